@@ -1,0 +1,499 @@
+//! Expressions to tape: iterative post-order compilation with common subexpressions
+//! shared (per arena node and per instruction), statements, outputs and dead-code
+//! elimination.
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+use crate::expr::{Arena, Id, Node, is_leaf};
+
+use super::tape::{LsInfo, Op, Tape};
+use super::{CodegenError, Stmt};
+
+/// A fast multiplicative hasher for the small integer keys used here.
+#[derive(Default)]
+pub(crate) struct FastHasher(u64);
+
+const SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+
+impl FastHasher {
+    #[inline]
+    fn add(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(SEED);
+    }
+}
+
+impl Hasher for FastHasher {
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.add(u64::from(b));
+        }
+    }
+    #[inline]
+    fn write_u8(&mut self, i: u8) {
+        self.add(u64::from(i));
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+    #[inline]
+    fn write_i32(&mut self, i: i32) {
+        self.add(u64::from(i as u32));
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+    #[inline]
+    fn write_isize(&mut self, i: isize) {
+        self.add(i as u64);
+    }
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A hash map with [`FastHasher`].
+pub(crate) type FastMap<K, V> = HashMap<K, V, BuildHasherDefault<FastHasher>>;
+
+/// Compiles expressions of one [`Arena`] into a [`Tape`].
+///
+/// Bind leaves to input slots with [`input`](Self::input), add statements with
+/// [`stmt`](Self::stmt) in execution order, then outputs with [`output`](Self::output)
+/// or [`output_input_minus`](Self::output_input_minus), and finish with
+/// [`build`](Self::build). Each arena node is compiled once while its leaves keep their
+/// binding, and structurally identical instructions are emitted once (value numbering),
+/// so shared subexpressions cost nothing extra.
+pub struct TapeBuilder<'a> {
+    arena: &'a Arena,
+    n_inputs: usize,
+    ops: Vec<Op>,
+    consts: Vec<f64>,
+    const_index: FastMap<u64, u32>,
+    numbering: FastMap<Op, u32>,
+    bound: FastMap<Id, u32>,
+    memo: FastMap<Id, u32>,
+    ls: Vec<LsInfo>,
+    outputs: Vec<u32>,
+    stack: Vec<(Id, bool)>,
+}
+
+impl<'a> TapeBuilder<'a> {
+    /// A builder for a tape with `n_inputs` input slots reading expressions of `arena`.
+    pub fn new(arena: &'a Arena, n_inputs: usize) -> Self {
+        TapeBuilder {
+            arena,
+            n_inputs,
+            ops: Vec::new(),
+            consts: Vec::new(),
+            const_index: FastMap::default(),
+            numbering: FastMap::default(),
+            bound: FastMap::default(),
+            memo: FastMap::default(),
+            ls: Vec::new(),
+            outputs: Vec::new(),
+            stack: Vec::new(),
+        }
+    }
+
+    /// The leaf node `leaf` (a `Var`, `Param`, `Time` or `Der` node) reads input slot
+    /// `slot`. Binding any other node substitutes the input for that whole expression.
+    /// Rebinding a node affects only expressions compiled afterwards (and drops the
+    /// per-node memo, so rebinding is meant to be rare).
+    ///
+    /// # Panics
+    /// If `slot >= n_inputs`.
+    pub fn input(&mut self, leaf: Id, slot: usize) {
+        assert!(
+            slot < self.n_inputs,
+            "TapeBuilder::input: slot {slot} out of range ({} inputs)",
+            self.n_inputs
+        );
+        let r = self.emit(Op::Input(slot as u32));
+        self.bind(leaf, r);
+    }
+
+    /// Adds a statement, executed after the earlier ones. Fails if an expression uses a
+    /// leaf that is neither an input nor assigned earlier, if a target is not a leaf, or
+    /// if the dimensions of a linear solve disagree.
+    pub fn stmt(&mut self, s: &Stmt) -> Result<(), CodegenError> {
+        match s {
+            Stmt::Assign { target, expr } => {
+                self.check_leaf(*target)?;
+                let r = self.compile(*expr)?;
+                self.bind(*target, r);
+            }
+            Stmt::LinearSolve { targets, a, c } => {
+                let k = targets.len();
+                if k == 0 || a.len() != k * k || c.len() != k {
+                    return Err(CodegenError::BadLinearSolve(format!(
+                        "{k} targets need {} matrix entries and {k} constants, got {} and {}",
+                        k * k,
+                        a.len(),
+                        c.len()
+                    )));
+                }
+                for &t in targets {
+                    self.check_leaf(t)?;
+                }
+                let mut ra = Vec::with_capacity(k * k);
+                for &e in a {
+                    ra.push(self.compile(e)?);
+                }
+                let mut rc = Vec::with_capacity(k);
+                for &e in c {
+                    rc.push(self.compile(e)?);
+                }
+                let names = targets
+                    .iter()
+                    .map(|&t| self.describe(t))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let base = self.ops.len() as u32;
+                self.ops.push(Op::LinearSolve(self.ls.len() as u32));
+                for _ in 1..k {
+                    self.ops.push(Op::LsPart);
+                }
+                self.ls.push(LsInfo {
+                    k,
+                    a: ra,
+                    c: rc,
+                    lu_off: 0,
+                    piv_off: 0,
+                    names,
+                });
+                for (i, &t) in targets.iter().enumerate() {
+                    self.bind(t, base + i as u32);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the output `e`; returns its index.
+    pub fn output(&mut self, e: Id) -> Result<usize, CodegenError> {
+        let r = self.compile(e)?;
+        self.outputs.push(r);
+        Ok(self.outputs.len() - 1)
+    }
+
+    /// Adds the output `inputs[slot] - e` (for rows `x' - f(x)` without building that
+    /// expression in the arena); returns its index.
+    pub fn output_input_minus(&mut self, slot: usize, e: Id) -> Result<usize, CodegenError> {
+        if slot >= self.n_inputs {
+            return Err(CodegenError::SlotOutOfRange {
+                slot,
+                n_inputs: self.n_inputs,
+            });
+        }
+        let r = self.compile(e)?;
+        let x = self.emit(Op::Input(slot as u32));
+        let d = self.emit(Op::Sub(x, r));
+        self.outputs.push(d);
+        Ok(self.outputs.len() - 1)
+    }
+
+    /// Finishes the tape, keeping only the instructions the outputs depend on.
+    pub fn build(self) -> Tape {
+        let n = self.ops.len();
+        assert!(n < u32::MAX as usize, "tape too long");
+        let ops = self.ops;
+        let ls = self.ls;
+        let mut live = vec![false; n];
+        for &o in &self.outputs {
+            live[o as usize] = true;
+        }
+        for i in (0..n).rev() {
+            match ops[i] {
+                Op::LsPart => {}
+                op @ Op::LinearSolve(s) => {
+                    let k = ls[s as usize].k;
+                    if live[i..i + k].iter().any(|&l| l) {
+                        live[i..i + k].fill(true);
+                        op.for_each_operand(&ls, |r| live[r as usize] = true);
+                    }
+                }
+                op => {
+                    if live[i] {
+                        op.for_each_operand(&ls, |r| live[r as usize] = true);
+                    }
+                }
+            }
+        }
+        let mut new_index = vec![u32::MAX; n];
+        let mut new_ops = Vec::with_capacity(live.iter().filter(|&&l| l).count());
+        let mut new_ls = Vec::new();
+        let (mut lu_len, mut piv_len, mut max_k) = (0, 0, 0);
+        for (i, &op) in ops.iter().enumerate() {
+            if !live[i] {
+                continue;
+            }
+            new_index[i] = new_ops.len() as u32;
+            let map = |r: u32| new_index[r as usize];
+            let op = match op {
+                Op::LinearSolve(s) => {
+                    let old = &ls[s as usize];
+                    let info = LsInfo {
+                        k: old.k,
+                        a: old.a.iter().map(|&r| map(r)).collect(),
+                        c: old.c.iter().map(|&r| map(r)).collect(),
+                        lu_off: lu_len,
+                        piv_off: piv_len,
+                        names: old.names.clone(),
+                    };
+                    lu_len += old.k * old.k;
+                    piv_len += old.k;
+                    max_k = max_k.max(old.k);
+                    new_ls.push(info);
+                    Op::LinearSolve(new_ls.len() as u32 - 1)
+                }
+                op => op.remap(map),
+            };
+            new_ops.push(op);
+        }
+        let outputs = self
+            .outputs
+            .iter()
+            .map(|&r| new_index[r as usize])
+            .collect();
+        Tape {
+            ops: new_ops,
+            consts: self.consts,
+            ls: new_ls,
+            outputs,
+            n_inputs: self.n_inputs,
+            lu_len,
+            piv_len,
+            max_k,
+        }
+    }
+
+    /// The debug form of a node, for messages.
+    fn describe(&self, id: Id) -> String {
+        format!("{:?} = {:?}", id, self.arena.node(id))
+    }
+
+    fn check_leaf(&self, id: Id) -> Result<(), CodegenError> {
+        if is_leaf(self.arena.node(id)) {
+            Ok(())
+        } else {
+            Err(CodegenError::NotALeaf(self.describe(id)))
+        }
+    }
+
+    /// Binds `id` to register `r`; compiled expressions that might have used an older
+    /// binding are forgotten.
+    fn bind(&mut self, id: Id, r: u32) {
+        if self.bound.get(&id) == Some(&r) {
+            return;
+        }
+        if self.bound.contains_key(&id) || self.memo.contains_key(&id) {
+            self.memo.clear();
+        }
+        self.bound.insert(id, r);
+    }
+
+    #[inline]
+    fn lookup(&self, id: Id) -> Option<u32> {
+        self.bound.get(&id).or_else(|| self.memo.get(&id)).copied()
+    }
+
+    #[inline]
+    fn reg(&self, id: Id) -> u32 {
+        self.lookup(id).expect("operand compiled before its parent")
+    }
+
+    /// Emits `op` unless an identical instruction exists; returns its register.
+    fn emit(&mut self, op: Op) -> u32 {
+        let op = match op {
+            Op::Add(a, b) if b < a => Op::Add(b, a),
+            Op::Mul(a, b) if b < a => Op::Mul(b, a),
+            op => op,
+        };
+        if let Some(&r) = self.numbering.get(&op) {
+            return r;
+        }
+        let r = self.ops.len() as u32;
+        self.ops.push(op);
+        self.numbering.insert(op, r);
+        r
+    }
+
+    fn const_slot(&mut self, c: f64) -> u32 {
+        let next = self.consts.len() as u32;
+        let k = *self.const_index.entry(c.to_bits()).or_insert(next);
+        if k == next {
+            self.consts.push(c);
+        }
+        k
+    }
+
+    fn constant(&mut self, c: f64) -> u32 {
+        let k = self.const_slot(c);
+        self.emit(Op::Const(k))
+    }
+
+    /// Compiles `root` (post-order with an explicit stack); returns its register.
+    fn compile(&mut self, root: Id) -> Result<u32, CodegenError> {
+        if let Some(r) = self.lookup(root) {
+            return Ok(r);
+        }
+        let arena = self.arena;
+        let mut stack = std::mem::take(&mut self.stack);
+        stack.clear();
+        stack.push((root, false));
+        let mut result = Ok(());
+        while let Some((id, expanded)) = stack.pop() {
+            if self.lookup(id).is_some() {
+                continue;
+            }
+            let node = arena.node(id);
+            if expanded {
+                let r = self.emit_node(node);
+                self.memo.insert(id, r);
+                continue;
+            }
+            match node {
+                Node::Const(b) => {
+                    let r = self.constant(f64::from_bits(*b));
+                    self.memo.insert(id, r);
+                    continue;
+                }
+                n if is_leaf(n) => {
+                    result = Err(CodegenError::UndefinedLeaf(self.describe(id)));
+                    break;
+                }
+                _ => {}
+            }
+            stack.push((id, true));
+            let mut push = |c: Id| {
+                if self.lookup(c).is_none() {
+                    stack.push((c, false));
+                }
+            };
+            match node {
+                Node::Sum(ts, _) => ts.iter().rev().for_each(|&(_, t)| push(t)),
+                Node::Prod(fs) => fs.iter().rev().for_each(|&(b, _)| push(b)),
+                Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => {
+                    push(*b);
+                    push(*a);
+                }
+                Node::F1(_, a) => push(*a),
+                Node::If(c, a, b) => {
+                    push(*b);
+                    push(*a);
+                    push(*c);
+                }
+                Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time | Node::Der(_) => {}
+            }
+        }
+        stack.clear();
+        self.stack = stack;
+        result?;
+        Ok(self.reg(root))
+    }
+
+    /// Emits the instructions of a non-leaf node whose children are compiled.
+    fn emit_node(&mut self, node: &Node) -> u32 {
+        match node {
+            Node::Sum(ts, c) => {
+                let c = f64::from_bits(*c);
+                let mut acc = if c != 0.0 {
+                    Some(self.constant(c))
+                } else {
+                    None
+                };
+                for &(kb, t) in ts.iter() {
+                    let k = f64::from_bits(kb);
+                    let rt = self.reg(t);
+                    let op = match acc {
+                        None if k == 1.0 => {
+                            acc = Some(rt);
+                            continue;
+                        }
+                        None if k == -1.0 => Op::Neg(rt),
+                        None => Op::Scale(self.const_slot(k), rt),
+                        Some(a) if k == 1.0 => Op::Add(a, rt),
+                        Some(a) if k == -1.0 => Op::Sub(a, rt),
+                        Some(a) => Op::AddScaled(a, self.const_slot(k), rt),
+                    };
+                    acc = Some(self.emit(op));
+                }
+                match acc {
+                    Some(r) => r,
+                    None => self.constant(c),
+                }
+            }
+            Node::Prod(fs) => {
+                let mut num: Option<u32> = None;
+                let mut den: Option<u32> = None;
+                let mut single_den: Option<(u32, i32)> = None;
+                for &(b, e) in fs.iter() {
+                    let rb = self.reg(b);
+                    let mag = e.unsigned_abs() as i32;
+                    let p = if mag == 1 {
+                        rb
+                    } else {
+                        self.emit(Op::PowI(rb, mag))
+                    };
+                    let slot = if e > 0 { &mut num } else { &mut den };
+                    let prev = *slot;
+                    if e < 0 {
+                        single_den = if prev.is_none() { Some((rb, e)) } else { None };
+                    }
+                    let v = match prev {
+                        None => p,
+                        Some(a) => self.emit(Op::Mul(a, p)),
+                    };
+                    if e > 0 {
+                        num = Some(v);
+                    } else {
+                        den = Some(v);
+                    }
+                }
+                match (num, den) {
+                    (Some(n), None) => n,
+                    (Some(n), Some(d)) => self.emit(Op::Div(n, d)),
+                    (None, Some(d)) => match single_den {
+                        Some((rb, e)) => self.emit(Op::PowI(rb, e)),
+                        None => {
+                            let one = self.constant(1.0);
+                            self.emit(Op::Div(one, d))
+                        }
+                    },
+                    (None, None) => self.constant(1.0),
+                }
+            }
+            Node::Pow(a, b) => {
+                let (a, b) = (self.reg(*a), self.reg(*b));
+                self.emit(Op::Pow(a, b))
+            }
+            Node::F1(f, a) => {
+                let a = self.reg(*a);
+                self.emit(Op::F1(*f, a))
+            }
+            Node::F2(f, a, b) => {
+                let (a, b) = (self.reg(*a), self.reg(*b));
+                self.emit(Op::F2(*f, a, b))
+            }
+            Node::Cmp(op, a, b) => {
+                let (a, b) = (self.reg(*a), self.reg(*b));
+                self.emit(Op::Cmp(*op, a, b))
+            }
+            Node::If(c, a, b) => {
+                let (c, a, b) = (self.reg(*c), self.reg(*a), self.reg(*b));
+                self.emit(Op::Select(c, a, b))
+            }
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time | Node::Der(_) => {
+                unreachable!("leaves are bound, not emitted")
+            }
+        }
+    }
+}

@@ -1,0 +1,386 @@
+//! The arena: node storage, hash-consing and simplification on construction.
+
+use std::collections::HashMap;
+
+use super::{Cmp, Func1, Func2, Id, Node};
+
+/// Hash-consed expression storage. Every constructor simplifies: constants fold,
+/// neutral elements vanish, sums and products are flattened and ordered, and like terms
+/// and like factors are collected.
+#[derive(Clone, Debug)]
+pub struct Arena {
+    nodes: Vec<Node>,
+    map: HashMap<Node, Id>,
+}
+
+impl Default for Arena {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Integer value of `x` if it is one that fits an exponent.
+fn as_exponent(x: f64) -> Option<i32> {
+    if x.fract() == 0.0 && x.abs() <= 1024.0 {
+        Some(x as i32)
+    } else {
+        None
+    }
+}
+
+impl Arena {
+    /// An empty arena.
+    pub fn new() -> Self {
+        let mut a = Arena {
+            nodes: Vec::new(),
+            map: HashMap::new(),
+        };
+        a.constant(0.0);
+        a.constant(1.0);
+        a
+    }
+
+    /// The node behind `id`.
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id.index()]
+    }
+
+    /// Number of distinct nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the arena holds no node (never true: 0 and 1 always exist).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    fn intern(&mut self, n: Node) -> Id {
+        if let Some(&id) = self.map.get(&n) {
+            return id;
+        }
+        let id = Id(self.nodes.len() as u32);
+        self.nodes.push(n.clone());
+        self.map.insert(n, id);
+        id
+    }
+
+    /// The constant 0.
+    pub fn zero(&self) -> Id {
+        Id(0)
+    }
+
+    /// The constant 1.
+    pub fn one(&self) -> Id {
+        Id(1)
+    }
+
+    /// A numeric constant (`-0.0` is stored as `0.0`).
+    pub fn constant(&mut self, c: f64) -> Id {
+        let c = if c == 0.0 { 0.0 } else { c };
+        self.intern(Node::Const(c.to_bits()))
+    }
+
+    /// The value of a constant node.
+    pub fn as_const(&self, id: Id) -> Option<f64> {
+        match self.node(id) {
+            Node::Const(b) => Some(f64::from_bits(*b)),
+            _ => None,
+        }
+    }
+
+    /// A variable leaf.
+    pub fn var(&mut self, i: u32) -> Id {
+        self.intern(Node::Var(i))
+    }
+
+    /// A parameter leaf.
+    pub fn param(&mut self, i: u32) -> Id {
+        self.intern(Node::Param(i))
+    }
+
+    /// Time.
+    pub fn time(&mut self) -> Id {
+        self.intern(Node::Time)
+    }
+
+    /// Time derivative. For a variable (or a derivative of one) this is the leaf
+    /// `der(x)`; for any other expression it is computed symbolically.
+    pub fn der(&mut self, x: Id) -> Id {
+        match self.node(x) {
+            Node::Var(_) | Node::Der(_) => self.intern(Node::Der(x)),
+            _ => self.time_derivative(x),
+        }
+    }
+
+    /// `sum(coefficient * term) + constant`, simplified.
+    pub fn linear_combination(&mut self, constant: f64, terms: &[(f64, Id)]) -> Id {
+        let mut c0 = constant;
+        let mut acc: Vec<(Id, f64)> = Vec::with_capacity(terms.len() + 2);
+        for &(k, t) in terms {
+            if k == 0.0 {
+                continue;
+            }
+            match self.node(t) {
+                Node::Const(b) => c0 += k * f64::from_bits(*b),
+                Node::Sum(ts, c) => {
+                    c0 += k * f64::from_bits(*c);
+                    for &(kk, tt) in ts.iter() {
+                        acc.push((tt, k * f64::from_bits(kk)));
+                    }
+                }
+                _ => acc.push((t, k)),
+            }
+        }
+        acc.sort_by_key(|&(id, _)| id);
+        let mut merged: Vec<(u64, Id)> = Vec::with_capacity(acc.len());
+        let mut i = 0;
+        while i < acc.len() {
+            let id = acc[i].0;
+            let mut k = 0.0;
+            while i < acc.len() && acc[i].0 == id {
+                k += acc[i].1;
+                i += 1;
+            }
+            if k != 0.0 {
+                merged.push((k.to_bits(), id));
+            }
+        }
+        if merged.is_empty() {
+            return self.constant(c0);
+        }
+        if merged.len() == 1 && c0 == 0.0 && f64::from_bits(merged[0].0) == 1.0 {
+            return merged[0].1;
+        }
+        let c0 = if c0 == 0.0 { 0.0 } else { c0 };
+        self.intern(Node::Sum(merged.into_boxed_slice(), c0.to_bits()))
+    }
+
+    /// `a + b`.
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        self.linear_combination(0.0, &[(1.0, a), (1.0, b)])
+    }
+
+    /// Sum of several expressions.
+    pub fn sum(&mut self, terms: &[Id]) -> Id {
+        let t: Vec<(f64, Id)> = terms.iter().map(|&x| (1.0, x)).collect();
+        self.linear_combination(0.0, &t)
+    }
+
+    /// `a - b`.
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        self.linear_combination(0.0, &[(1.0, a), (-1.0, b)])
+    }
+
+    /// `-a`.
+    pub fn neg(&mut self, a: Id) -> Id {
+        self.linear_combination(0.0, &[(-1.0, a)])
+    }
+
+    /// `k * a`.
+    pub fn scale(&mut self, k: f64, a: Id) -> Id {
+        self.linear_combination(0.0, &[(k, a)])
+    }
+
+    /// Splits a factor into a numeric coefficient and `(base, exponent)` pairs.
+    fn factor_parts(&self, x: Id, out: &mut Vec<(Id, i32)>) -> f64 {
+        match self.node(x) {
+            Node::Const(b) => f64::from_bits(*b),
+            Node::Sum(ts, c) if ts.len() == 1 && f64::from_bits(*c) == 0.0 => {
+                let (k, t) = ts[0];
+                let k = f64::from_bits(k);
+                match self.node(t) {
+                    Node::Prod(fs) => out.extend(fs.iter().copied()),
+                    _ => out.push((t, 1)),
+                }
+                k
+            }
+            Node::Prod(fs) => {
+                out.extend(fs.iter().copied());
+                1.0
+            }
+            _ => {
+                out.push((x, 1));
+                1.0
+            }
+        }
+    }
+
+    /// Builds `coefficient * product(base ^ exponent)` from unsorted factors.
+    fn build_product(&mut self, coef: f64, mut fs: Vec<(Id, i32)>) -> Id {
+        if coef == 0.0 {
+            return self.zero();
+        }
+        fs.sort_by_key(|&(id, _)| id);
+        let mut merged: Vec<(Id, i32)> = Vec::with_capacity(fs.len());
+        for (b, e) in fs {
+            match merged.last_mut() {
+                Some((lb, le)) if *lb == b => *le += e,
+                _ => merged.push((b, e)),
+            }
+        }
+        merged.retain(|&(_, e)| e != 0);
+        let core = match merged.len() {
+            0 => return self.constant(coef),
+            1 if merged[0].1 == 1 => merged[0].0,
+            _ => self.intern(Node::Prod(merged.into_boxed_slice())),
+        };
+        if coef == 1.0 {
+            core
+        } else {
+            self.linear_combination(0.0, &[(coef, core)])
+        }
+    }
+
+    /// Product of several expressions.
+    pub fn product(&mut self, factors: &[Id]) -> Id {
+        let mut fs = Vec::with_capacity(factors.len() + 2);
+        let mut coef = 1.0;
+        for &f in factors {
+            coef *= self.factor_parts(f, &mut fs);
+        }
+        self.build_product(coef, fs)
+    }
+
+    /// `a * b`.
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        if let Some(k) = self.as_const(a) {
+            return self.scale(k, b);
+        }
+        if let Some(k) = self.as_const(b) {
+            return self.scale(k, a);
+        }
+        self.product(&[a, b])
+    }
+
+    /// `a / b`.
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        if let Some(k) = self.as_const(b) {
+            return self.scale(1.0 / k, a);
+        }
+        let inv = self.powi(b, -1);
+        self.mul(a, inv)
+    }
+
+    /// `a ^ n` for an integer `n`.
+    pub fn powi(&mut self, a: Id, n: i32) -> Id {
+        if n == 0 {
+            return self.one();
+        }
+        if n == 1 {
+            return a;
+        }
+        if let Some(c) = self.as_const(a) {
+            return self.constant(c.powi(n));
+        }
+        let mut fs = Vec::new();
+        let coef = match self.node(a) {
+            Node::Sum(ts, c) if ts.len() == 1 && f64::from_bits(*c) == 0.0 => {
+                self.factor_parts(a, &mut fs)
+            }
+            Node::Prod(_) => self.factor_parts(a, &mut fs),
+            _ => {
+                fs.push((a, 1));
+                1.0
+            }
+        };
+        for f in fs.iter_mut() {
+            f.1 *= n;
+        }
+        self.build_product(coef.powi(n), fs)
+    }
+
+    /// `a ^ b`.
+    pub fn pow(&mut self, a: Id, b: Id) -> Id {
+        if let Some(e) = self.as_const(b) {
+            if let Some(n) = as_exponent(e) {
+                return self.powi(a, n);
+            }
+            if let Some(c) = self.as_const(a) {
+                return self.constant(c.powf(e));
+            }
+        }
+        if let Some(1.0) = self.as_const(a) {
+            return self.one();
+        }
+        self.intern(Node::Pow(a, b))
+    }
+
+    /// A unary function, folded when its argument is constant.
+    pub fn f1(&mut self, f: Func1, a: Id) -> Id {
+        if let Some(c) = self.as_const(a) {
+            return self.constant(f.apply(c));
+        }
+        if let (Func1::Sqrt, Node::Prod(fs)) = (f, self.node(a))
+            && fs.len() == 1
+            && fs[0].1 == 2
+        {
+            let base = fs[0].0;
+            return self.f1(Func1::Abs, base);
+        }
+        self.intern(Node::F1(f, a))
+    }
+
+    /// A binary function, folded when both arguments are constant.
+    pub fn f2(&mut self, f: Func2, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(f.apply(x, y));
+        }
+        if a == b && f != Func2::Atan2 {
+            return a;
+        }
+        self.intern(Node::F2(f, a, b))
+    }
+
+    /// A comparison (1.0 when true), folded when both sides are constant.
+    pub fn cmp(&mut self, op: Cmp, a: Id, b: Id) -> Id {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(op.apply(x, y));
+        }
+        self.intern(Node::Cmp(op, a, b))
+    }
+
+    /// `if cond != 0 then a else b`, folded when the condition is constant or both
+    /// branches are equal.
+    pub fn ite(&mut self, cond: Id, a: Id, b: Id) -> Id {
+        if let Some(c) = self.as_const(cond) {
+            return if c != 0.0 { a } else { b };
+        }
+        if a == b {
+            return a;
+        }
+        self.intern(Node::If(cond, a, b))
+    }
+
+    /// Logical and of two conditions (values 0 or 1).
+    pub fn and(&mut self, a: Id, b: Id) -> Id {
+        let zero = self.zero();
+        self.ite(a, b, zero)
+    }
+
+    /// Logical or of two conditions (values 0 or 1).
+    pub fn or(&mut self, a: Id, b: Id) -> Id {
+        let one = self.one();
+        self.ite(a, one, b)
+    }
+
+    /// Logical not of a condition (value 0 or 1).
+    pub fn not(&mut self, a: Id) -> Id {
+        let zero = self.zero();
+        let one = self.one();
+        self.ite(a, zero, one)
+    }
+
+    /// The children of a node, in order.
+    pub fn children(&self, id: Id) -> Vec<Id> {
+        match self.node(id) {
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => vec![],
+            Node::Der(x) => vec![*x],
+            Node::Sum(ts, _) => ts.iter().map(|&(_, t)| t).collect(),
+            Node::Prod(fs) => fs.iter().map(|&(b, _)| b).collect(),
+            Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => vec![*a, *b],
+            Node::F1(_, a) => vec![*a],
+            Node::If(c, a, b) => vec![*c, *a, *b],
+        }
+    }
+}

@@ -1,0 +1,217 @@
+//! Substitution, leaf sets and copying between arenas.
+
+use std::collections::{HashMap, HashSet};
+
+use super::{Arena, Id, Node, is_leaf};
+
+impl Arena {
+    /// Rebuilds `e` through the simplifying constructors after replacing every node found
+    /// in `map` (usually leaves). A replaced `x` also replaces `der(x)` by the time
+    /// derivative of its image, unless `der(x)` has an entry of its own.
+    pub fn substitute(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
+        let mut memo = HashMap::new();
+        self.subst_rec(e, map, &mut memo)
+    }
+
+    /// [`Arena::substitute`] with a memo shared across calls (for many expressions
+    /// under one map).
+    pub fn substitute_memo(
+        &mut self,
+        e: Id,
+        map: &HashMap<Id, Id>,
+        memo: &mut HashMap<Id, Id>,
+    ) -> Id {
+        self.subst_rec(e, map, memo)
+    }
+
+    fn subst_rec(&mut self, e: Id, map: &HashMap<Id, Id>, memo: &mut HashMap<Id, Id>) -> Id {
+        if let Some(&r) = map.get(&e) {
+            return r;
+        }
+        if let Some(&r) = memo.get(&e) {
+            return r;
+        }
+        let node = self.node(e).clone();
+        let r = match node {
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => e,
+            Node::Der(x) => {
+                let nx = self.subst_rec(x, map, memo);
+                if nx == x { e } else { self.der(nx) }
+            }
+            Node::Sum(ts, c) => {
+                let mut terms = Vec::with_capacity(ts.len());
+                let mut changed = false;
+                for &(k, t) in ts.iter() {
+                    let nt = self.subst_rec(t, map, memo);
+                    changed |= nt != t;
+                    terms.push((f64::from_bits(k), nt));
+                }
+                if changed {
+                    self.linear_combination(f64::from_bits(c), &terms)
+                } else {
+                    e
+                }
+            }
+            Node::Prod(fs) => {
+                let mut factors = Vec::with_capacity(fs.len());
+                let mut changed = false;
+                for &(b, n) in fs.iter() {
+                    let nb = self.subst_rec(b, map, memo);
+                    changed |= nb != b;
+                    factors.push((nb, n));
+                }
+                if changed {
+                    let ps: Vec<Id> = factors.iter().map(|&(b, n)| self.powi(b, n)).collect();
+                    self.product(&ps)
+                } else {
+                    e
+                }
+            }
+            Node::Pow(a, b) => {
+                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                self.pow(na, nb)
+            }
+            Node::F1(f, a) => {
+                let na = self.subst_rec(a, map, memo);
+                self.f1(f, na)
+            }
+            Node::F2(f, a, b) => {
+                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                self.f2(f, na, nb)
+            }
+            Node::Cmp(op, a, b) => {
+                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                self.cmp(op, na, nb)
+            }
+            Node::If(c, a, b) => {
+                let nc = self.subst_rec(c, map, memo);
+                let na = self.subst_rec(a, map, memo);
+                let nb = self.subst_rec(b, map, memo);
+                self.ite(nc, na, nb)
+            }
+        };
+        memo.insert(e, r);
+        r
+    }
+
+    /// The distinct leaves of `e` (variables, parameters, time, derivatives), sorted.
+    /// `der(x)` is a leaf of its own; `x` is not listed for it.
+    pub fn leaves(&self, e: Id) -> Vec<Id> {
+        let mut seen = HashSet::new();
+        let mut out = Vec::new();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if !seen.insert(x) {
+                continue;
+            }
+            let n = self.node(x);
+            if is_leaf(n) {
+                out.push(x);
+            } else {
+                stack.extend(self.children(x));
+            }
+        }
+        out.sort();
+        out
+    }
+
+    /// Whether `leaf` occurs in `e`.
+    pub fn contains(&self, e: Id, leaf: Id) -> bool {
+        let mut seen = HashSet::new();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if x == leaf {
+                return true;
+            }
+            if !seen.insert(x) || is_leaf(self.node(x)) {
+                continue;
+            }
+            stack.extend(self.children(x));
+        }
+        false
+    }
+
+    /// Whether any of `leaves` (a set) occurs in `e`.
+    pub fn contains_any(&self, e: Id, leaves: &HashSet<Id>) -> bool {
+        let mut seen = HashSet::new();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if leaves.contains(&x) {
+                return true;
+            }
+            if !seen.insert(x) || is_leaf(self.node(x)) {
+                continue;
+            }
+            stack.extend(self.children(x));
+        }
+        false
+    }
+
+    /// Copies `e` from `src` into this arena; `leaf` maps each leaf node of `src`
+    /// (variables, parameters, time; never `der`, which is rebuilt from its argument) to a
+    /// node of this arena. `memo` is shared across calls so common subexpressions are
+    /// copied once.
+    pub fn import(
+        &mut self,
+        src: &Arena,
+        e: Id,
+        leaf: &mut dyn FnMut(&mut Arena, &Node) -> Id,
+        memo: &mut HashMap<Id, Id>,
+    ) -> Id {
+        if let Some(&r) = memo.get(&e) {
+            return r;
+        }
+        let r = match src.node(e) {
+            Node::Const(b) => self.constant(f64::from_bits(*b)),
+            n @ (Node::Var(_) | Node::Param(_) | Node::Time) => leaf(self, n),
+            Node::Der(x) => {
+                let nx = self.import(src, *x, leaf, memo);
+                self.der(nx)
+            }
+            Node::Sum(ts, c) => {
+                let terms: Vec<(f64, Id)> = ts
+                    .iter()
+                    .map(|&(k, t)| (f64::from_bits(k), self.import(src, t, leaf, memo)))
+                    .collect();
+                self.linear_combination(f64::from_bits(*c), &terms)
+            }
+            Node::Prod(fs) => {
+                let ps: Vec<Id> = fs
+                    .iter()
+                    .map(|&(b, n)| {
+                        let nb = self.import(src, b, leaf, memo);
+                        self.powi(nb, n)
+                    })
+                    .collect();
+                self.product(&ps)
+            }
+            Node::Pow(a, b) => {
+                let na = self.import(src, *a, leaf, memo);
+                let nb = self.import(src, *b, leaf, memo);
+                self.pow(na, nb)
+            }
+            Node::F1(f, a) => {
+                let na = self.import(src, *a, leaf, memo);
+                self.f1(*f, na)
+            }
+            Node::F2(f, a, b) => {
+                let na = self.import(src, *a, leaf, memo);
+                let nb = self.import(src, *b, leaf, memo);
+                self.f2(*f, na, nb)
+            }
+            Node::Cmp(op, a, b) => {
+                let na = self.import(src, *a, leaf, memo);
+                let nb = self.import(src, *b, leaf, memo);
+                self.cmp(*op, na, nb)
+            }
+            Node::If(c, a, b) => {
+                let nc = self.import(src, *c, leaf, memo);
+                let na = self.import(src, *a, leaf, memo);
+                let nb = self.import(src, *b, leaf, memo);
+                self.ite(nc, na, nb)
+            }
+        };
+        memo.insert(e, r);
+        r
+    }
+}

@@ -1,0 +1,91 @@
+//! Unit tests of construction-time simplification, display and solving.
+
+use super::*;
+
+fn v(name: &str) -> Expr {
+    Expr::var(name)
+}
+
+#[test]
+fn sums_collect_like_terms_and_fold_constants() {
+    let x = v("t_sum.x");
+    let y = v("t_sum.y");
+    assert_eq!(x + x, 2.0 * x);
+    assert_eq!((x + 1.0) - 1.0, x);
+    assert_eq!(x - x, Expr::constant(0.0));
+    assert_eq!((x + y) + (y - x), 2.0 * y);
+    assert_eq!(((x + 2.0) * 3.0).to_string(), "3*t_sum.x + 6");
+}
+
+#[test]
+fn products_merge_exponents_and_neutral_elements() {
+    let x = v("t_prod.x");
+    let y = v("t_prod.y");
+    assert_eq!(x * x, x.powi(2));
+    assert_eq!(x * 1.0, x);
+    assert_eq!(x * 0.0, Expr::constant(0.0));
+    assert_eq!((x * y) / x, y);
+    assert_eq!((2.0 * x) * (3.0 * y), 6.0 * (x * y));
+    assert_eq!((x / y).to_string(), "t_prod.x/t_prod.y");
+    assert_eq!(Expr::constant(2.0).sin().as_f64(), Some(2f64.sin()));
+}
+
+#[test]
+fn display_is_readable_infix() {
+    // terms are ordered by creation: sin(phi) exists before w here
+    let phi = v("pendulum.phi");
+    let s = phi.sin();
+    let w = v("pendulum.w");
+    assert_eq!(
+        (s * 2.0 + w).to_string(),
+        "2*sin(pendulum.phi) + pendulum.w"
+    );
+    assert_eq!(
+        (w - phi.der()).to_string(),
+        "pendulum.w - der(pendulum.phi)"
+    );
+    let e = (phi + w) * v("pendulum.J");
+    assert_eq!(e.to_string(), "(pendulum.phi + pendulum.w)*pendulum.J");
+    assert_eq!((-phi).to_string(), "-pendulum.phi");
+}
+
+#[test]
+fn solve_linear_gives_solution_and_coefficient() {
+    let x = v("t_solve.x");
+    let y = v("t_solve.y");
+    let r = Expr::param("t_solve.R");
+    // R*x - y = 0  ->  x = y/R, coefficient R
+    let (sol, coef) = (r * x - y).solve_for(x).unwrap();
+    assert_eq!(sol, y / r);
+    assert_eq!(coef, r);
+    // nonlinear in x
+    assert!((x * x - y).solve_for(x).is_none());
+    assert!((x.sin() - y).solve_for(x).is_none());
+    // absent
+    assert!((y - 1.0).solve_for(x).is_none());
+    // x*y - 1 is linear in x with coefficient y (which may vanish)
+    let (_, c) = (x * y - 1.0).solve_for(x).unwrap();
+    assert_eq!(c, y);
+}
+
+#[test]
+fn derivatives_of_known_forms() {
+    let x = v("t_diff.x");
+    let y = v("t_diff.y");
+    assert_eq!((x * y).diff(x), y);
+    assert_eq!((x.powi(3)).diff(x), 3.0 * x.powi(2));
+    assert_eq!(x.sin().diff(x), x.cos());
+    assert_eq!(x.sin().time_derivative(), x.cos() * x.der());
+    assert_eq!((x * y).time_derivative(), x * y.der() + y * x.der());
+    assert_eq!(x.der().diff(x), Expr::constant(0.0));
+    assert_eq!(x.der().diff(x.der()), Expr::constant(1.0));
+}
+
+#[test]
+fn substitution_re_simplifies() {
+    let x = v("t_subst.x");
+    let y = v("t_subst.y");
+    let e = x * y + x.der();
+    let r = e.substitute(&[(x, Expr::constant(2.0) * y)]);
+    assert_eq!(r, 2.0 * y.powi(2) + 2.0 * y.der());
+}

@@ -1,0 +1,64 @@
+//! The balance check: as many equations as unknowns, with a message that says which
+//! unknowns are left undetermined or which equations over-determine.
+
+use crate::expr::{Arena, Id, Node};
+use crate::structure::{BipartiteGraph, dm::dulmage_mendelsohn, matching::maximum_matching};
+
+use super::error::ModelError;
+use super::flatten::FlatSystem;
+
+/// The variables (by index) occurring in `e`, where `der(x)` counts as `x`.
+pub fn variables_in(arena: &Arena, e: Id) -> Vec<usize> {
+    let mut out: Vec<usize> = arena
+        .leaves(e)
+        .into_iter()
+        .filter_map(|l| base_variable(arena, l))
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The variable under a leaf: `x` for `x`, `der(x)`, `der(der(x))`.
+pub fn base_variable(arena: &Arena, mut leaf: Id) -> Option<usize> {
+    loop {
+        match arena.node(leaf) {
+            Node::Var(i) => return Some(*i as usize),
+            Node::Der(x) => leaf = *x,
+            _ => return None,
+        }
+    }
+}
+
+/// Checks that the flat model has as many equations as unknowns. When it does not,
+/// a maximum matching and the Dulmage-Mendelsohn decomposition name the unknowns no
+/// equation can determine and the equations with nothing left to determine.
+pub fn check_balance(flat: &FlatSystem) -> Result<(), ModelError> {
+    let (ne, nv) = (flat.equations.len(), flat.variables.len());
+    if ne == nv {
+        return Ok(());
+    }
+    let mut g = BipartiteGraph::new(nv);
+    for eq in &flat.equations {
+        g.add_equation(variables_in(&flat.arena, eq.residual));
+    }
+    let m = maximum_matching(&g, None, None);
+    let dm = dulmage_mendelsohn(&g, &m, None);
+    let undetermined = dm
+        .under_vars
+        .iter()
+        .map(|&v| flat.variables[v].name.clone())
+        .collect();
+    let overdetermined = dm
+        .over_eqs
+        .iter()
+        .map(|&e| flat.describe(&flat.equations[e]))
+        .collect();
+    Err(ModelError::Unbalanced {
+        model: flat.name.clone(),
+        equations: ne,
+        unknowns: nv,
+        undetermined,
+        overdetermined,
+    })
+}

@@ -1,0 +1,101 @@
+//! Errors found while flattening a model.
+
+/// A problem with the model's declarations or connections, naming everything by its full
+/// path.
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
+pub enum ModelError {
+    /// An equation refers to a variable or parameter that is not declared.
+    #[error("unknown {what} `{name}` in {place}{}", suggest(.suggestions))]
+    UnknownName {
+        /// "variable" or "parameter".
+        what: &'static str,
+        /// The full name used.
+        name: String,
+        /// Where it was used (an equation's text).
+        place: String,
+        /// Declared names close to it.
+        suggestions: Vec<String>,
+    },
+    /// Two declarations share a full name.
+    #[error("`{0}` is declared twice")]
+    DuplicateName(String),
+    /// `connect()` names something that is not a connector.
+    #[error("in `{connection}`: `{name}` is not a connector{}", suggest(.suggestions))]
+    UnknownConnector {
+        /// The connect statement as written, with the system's path.
+        connection: String,
+        /// The full name that was not found.
+        name: String,
+        /// Connectors close to it.
+        suggestions: Vec<String>,
+    },
+    /// `connect()` joins connectors of different classes.
+    #[error("in `{connection}`: cannot connect `{a}` ({class_a}) with `{b}` ({class_b})")]
+    IncompatibleConnectors {
+        /// The connect statement.
+        connection: String,
+        /// First connector.
+        a: String,
+        /// Its class.
+        class_a: String,
+        /// Second connector.
+        b: String,
+        /// Its class.
+        class_b: String,
+    },
+    /// A parameter has no value and is not computed at initialization.
+    #[error("parameter `{0}` has no value")]
+    ParameterWithoutValue(String),
+    /// As many equations as unknowns are needed.
+    #[error("{}", unbalanced_message(.model, .equations, .unknowns, .undetermined, .overdetermined))]
+    Unbalanced {
+        /// Model name.
+        model: String,
+        /// Number of equations.
+        equations: usize,
+        /// Number of unknowns.
+        unknowns: usize,
+        /// Unknowns that no equation can determine (full paths).
+        undetermined: Vec<String>,
+        /// Equations with nothing left to determine (as text).
+        overdetermined: Vec<String>,
+    },
+}
+
+fn suggest(s: &[String]) -> String {
+    if s.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " (did you mean {}?)",
+            s.iter()
+                .map(|x| format!("`{x}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
+fn unbalanced_message(
+    model: &str,
+    equations: &usize,
+    unknowns: &usize,
+    under: &[String],
+    over: &[String],
+) -> String {
+    let mut m =
+        format!("model `{model}` is not balanced: {equations} equations for {unknowns} unknowns");
+    if !under.is_empty() {
+        m.push_str(&format!(
+            "\n  under-determined: no equation is left for {}",
+            crate::names::list(under, 12)
+        ));
+    }
+    if !over.is_empty() {
+        m.push_str(&format!(
+            "\n  over-determined: nothing is left to determine in {}",
+            crate::names::list(over, 12)
+        ));
+    }
+    m
+}

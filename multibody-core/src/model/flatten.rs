@@ -1,0 +1,546 @@
+//! Flattening: the system tree becomes scalar equations over numbered variables.
+
+use std::collections::HashMap;
+
+use crate::expr::{Arena, Expr, Id, NameResolver, Node};
+use crate::names::closest;
+
+use super::error::ModelError;
+use super::system::{Equation, System, join_path};
+use super::variable::{Parameter, VarKind, Variable};
+
+/// Where a flat equation came from (for messages).
+#[derive(Clone, Debug)]
+pub enum Origin {
+    /// Declared in a component.
+    Component {
+        /// The component's path (empty for the root).
+        path: String,
+        /// The equation as written.
+        equation: Equation,
+    },
+    /// Equal potentials (or signals) of two connected connectors.
+    Connect {
+        /// The two variables made equal.
+        a: String,
+        /// Second variable.
+        b: String,
+    },
+    /// Zero sum of the flows of a connection set.
+    FlowSum {
+        /// The flow variables of the set.
+        flows: Vec<String>,
+    },
+    /// The flow of a connector that is connected nowhere is zero.
+    UnconnectedFlow {
+        /// The flow variable.
+        flow: String,
+    },
+    /// A start value declared `fixed` (initialization only).
+    FixedStart {
+        /// The variable.
+        var: String,
+    },
+}
+
+/// One scalar equation `residual = 0` of a flat system.
+#[derive(Clone, Debug)]
+pub struct FlatEquation {
+    /// The residual in the flat system's arena.
+    pub residual: Id,
+    /// Where it came from.
+    pub origin: Origin,
+}
+
+/// A flattened model: numbered variables and parameters, and scalar equations in a local
+/// arena where `Var(i)` is `variables[i]` and `Param(j)` is `parameters[j]`.
+#[derive(Clone, Debug)]
+pub struct FlatSystem {
+    /// Model name.
+    pub name: String,
+    /// All unknowns, in declaration order.
+    pub variables: Vec<Variable>,
+    /// All tunable parameters.
+    pub parameters: Vec<Parameter>,
+    /// Expression storage for the equations below.
+    pub arena: Arena,
+    /// Equations.
+    pub equations: Vec<FlatEquation>,
+    /// Initial equations.
+    pub initial_equations: Vec<FlatEquation>,
+    /// Start values in the local arena (parameters may occur).
+    pub starts: Vec<Option<Id>>,
+    /// Parameter bindings in the local arena.
+    pub parameter_values: Vec<Option<Id>>,
+}
+
+/// Names of a flat system's leaves.
+pub struct FlatNames<'a> {
+    /// Variables.
+    pub variables: &'a [Variable],
+    /// Parameters.
+    pub parameters: &'a [Parameter],
+}
+
+impl NameResolver for FlatNames<'_> {
+    fn var(&self, i: u32) -> String {
+        self.variables[i as usize].name.clone()
+    }
+    fn param(&self, i: u32) -> String {
+        self.parameters[i as usize].name.clone()
+    }
+}
+
+impl FlatSystem {
+    /// Leaf names for display.
+    pub fn names(&self) -> FlatNames<'_> {
+        FlatNames {
+            variables: &self.variables,
+            parameters: &self.parameters,
+        }
+    }
+
+    /// Text of an expression of this system.
+    pub fn show(&self, e: Id) -> String {
+        self.arena.display(e, &self.names())
+    }
+
+    /// A readable description of an equation for messages.
+    pub fn describe(&self, eq: &FlatEquation) -> String {
+        match &eq.origin {
+            Origin::Component { path, equation } => {
+                let at = if path.is_empty() {
+                    "model"
+                } else {
+                    path.as_str()
+                };
+                format!("{at}: {} = {}", equation.lhs, equation.rhs)
+            }
+            Origin::Connect { a, b } => format!("connection: {a} = {b}"),
+            Origin::FlowSum { flows } => format!("connection: {} = 0", flows.join(" + ")),
+            Origin::UnconnectedFlow { flow } => format!("unconnected flow: {flow} = 0"),
+            Origin::FixedStart { var } => format!("fixed start value of {var}"),
+        }
+    }
+}
+
+struct ConnectorInfo {
+    class: String,
+    /// Parent system's path.
+    owner: String,
+    vars: Vec<(usize, VarKind)>,
+    connected_inside: bool,
+}
+
+struct Flattener<'g> {
+    g: &'g crate::expr::global::Global,
+    flat: FlatSystem,
+    var_of_sym: HashMap<u32, u32>,
+    param_of_sym: HashMap<u32, u32>,
+    connectors: Vec<ConnectorInfo>,
+    connector_of_path: HashMap<String, usize>,
+    memo: HashMap<Id, Id>,
+    errors: Vec<ModelError>,
+}
+
+fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+/// Flattens a model: collects every variable, parameter and equation under full names,
+/// adds the connection equations (potentials equal, flows summing to zero, unconnected
+/// flows zero), and checks names and connector classes. The balance check is separate
+/// ([`super::balance::check_balance`]).
+pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
+    let g = crate::expr::global::global();
+    let mut f = Flattener {
+        g: &g,
+        flat: FlatSystem {
+            name: sys.name.clone(),
+            variables: Vec::new(),
+            parameters: Vec::new(),
+            arena: Arena::new(),
+            equations: Vec::new(),
+            initial_equations: Vec::new(),
+            starts: Vec::new(),
+            parameter_values: Vec::new(),
+        },
+        var_of_sym: HashMap::new(),
+        param_of_sym: HashMap::new(),
+        connectors: Vec::new(),
+        connector_of_path: HashMap::new(),
+        memo: HashMap::new(),
+        errors: Vec::new(),
+    };
+    // Pass 1: declarations.
+    let mut stack = vec![sys];
+    let mut order = Vec::new();
+    while let Some(s) = stack.pop() {
+        order.push(s);
+        f.declare(s);
+        for sub in s.subsystems.iter().rev() {
+            stack.push(sub);
+        }
+    }
+    if let Some(e) = f.errors.first() {
+        return Err(e.clone());
+    }
+    // Pass 2: equations, starts and parameter values.
+    for s in &order {
+        for eq in &s.equations {
+            let origin = Origin::Component {
+                path: s.path.clone(),
+                equation: *eq,
+            };
+            if let Some(r) = f.translate_equation(eq, &origin) {
+                f.flat.equations.push(FlatEquation {
+                    residual: r,
+                    origin,
+                });
+            }
+        }
+        for eq in &s.initial_equations {
+            let origin = Origin::Component {
+                path: s.path.clone(),
+                equation: *eq,
+            };
+            if let Some(r) = f.translate_equation(eq, &origin) {
+                f.flat.initial_equations.push(FlatEquation {
+                    residual: r,
+                    origin,
+                });
+            }
+        }
+    }
+    let vars = f.flat.variables.clone();
+    for v in &vars {
+        let start = v.start.and_then(|e| {
+            let origin = Origin::FixedStart {
+                var: v.name.clone(),
+            };
+            f.translate(e, &origin)
+        });
+        f.flat.starts.push(start);
+    }
+    let params = f.flat.parameters.clone();
+    for p in &params {
+        let val = p.value.and_then(|e| {
+            let origin = Origin::FixedStart {
+                var: p.name.clone(),
+            };
+            f.translate(e, &origin)
+        });
+        if val.is_none() && p.fixed {
+            f.errors
+                .push(ModelError::ParameterWithoutValue(p.name.clone()));
+        }
+        f.flat.parameter_values.push(val);
+    }
+    // Pass 3: connections.
+    f.connections(&order);
+    if let Some(e) = f.errors.into_iter().next() {
+        return Err(e);
+    }
+    Ok(f.flat)
+}
+
+impl Flattener<'_> {
+    fn declare(&mut self, s: &System) {
+        let mut conn_vars = Vec::new();
+        for v in &s.variables {
+            let sym = self.symbol_id_locked(&v.name);
+            let idx = self.flat.variables.len() as u32;
+            if self.var_of_sym.insert(sym, idx).is_some() {
+                self.errors.push(ModelError::DuplicateName(v.name.clone()));
+            }
+            self.flat.variables.push(v.clone());
+            if v.kind != VarKind::Internal {
+                conn_vars.push((idx as usize, v.kind));
+            }
+        }
+        for p in &s.parameters {
+            let sym = self.symbol_id_locked(&p.name);
+            let idx = self.flat.parameters.len() as u32;
+            if self.param_of_sym.insert(sym, idx).is_some() {
+                self.errors.push(ModelError::DuplicateName(p.name.clone()));
+            }
+            self.flat.parameters.push(p.clone());
+        }
+        if let Some(class) = &s.connector_class {
+            let owner = match s.path.rfind('.') {
+                Some(i) => s.path[..i].to_string(),
+                None => String::new(),
+            };
+            self.connector_of_path
+                .insert(s.path.clone(), self.connectors.len());
+            self.connectors.push(ConnectorInfo {
+                class: class.clone(),
+                owner,
+                vars: conn_vars,
+                connected_inside: false,
+            });
+        }
+    }
+
+    /// Symbol id of a declared name, looked up in the already-locked global table. A name
+    /// never interned (a `Variable` pushed by hand) gets an id that matches no symbol.
+    fn symbol_id_locked(&self, name: &str) -> u32 {
+        self.g.lookup(name).unwrap_or(
+            u32::MAX - self.flat.variables.len() as u32 - self.flat.parameters.len() as u32,
+        )
+    }
+
+    /// `lhs - rhs` of an equation in the local arena (built there, so the global lock
+    /// held by the flattener is never taken twice).
+    fn translate_equation(&mut self, eq: &Equation, origin: &Origin) -> Option<Id> {
+        let l = self.translate(eq.lhs, origin)?;
+        let r = self.translate(eq.rhs, origin)?;
+        Some(self.flat.arena.sub(l, r))
+    }
+
+    fn translate(&mut self, e: Expr, origin: &Origin) -> Option<Id> {
+        let g = self.g;
+        let mut missing: Option<(&'static str, u32)> = None;
+        let var_of_sym = &self.var_of_sym;
+        let param_of_sym = &self.param_of_sym;
+        let r = self.flat.arena.import(
+            &g.arena,
+            e.id(),
+            &mut |a: &mut Arena, n: &Node| match n {
+                Node::Var(s) => match var_of_sym.get(s) {
+                    Some(&i) => a.var(i),
+                    None => {
+                        missing.get_or_insert(("variable", *s));
+                        a.zero()
+                    }
+                },
+                Node::Param(s) => match param_of_sym.get(s) {
+                    Some(&i) => a.param(i),
+                    None => {
+                        missing.get_or_insert(("parameter", *s));
+                        a.zero()
+                    }
+                },
+                _ => a.time(),
+            },
+            &mut self.memo,
+        );
+        if let Some((what, s)) = missing {
+            // A failed import may have cached partial results; drop the memo.
+            self.memo.clear();
+            let name = g.name(s).to_string();
+            let place = match origin {
+                Origin::Component { path, equation } => {
+                    format!(
+                        "{}: {} = {}",
+                        if path.is_empty() { "model" } else { path },
+                        g.arena.display(equation.lhs.id(), g),
+                        g.arena.display(equation.rhs.id(), g)
+                    )
+                }
+                Origin::FixedStart { var } => format!("the start value or binding of {var}"),
+                _ => "a connection".into(),
+            };
+            let candidates: Vec<&str> = if what == "variable" {
+                self.flat
+                    .variables
+                    .iter()
+                    .map(|v| v.name.as_str())
+                    .collect()
+            } else {
+                self.flat
+                    .parameters
+                    .iter()
+                    .map(|p| p.name.as_str())
+                    .collect()
+            };
+            let suggestions = closest(&name, candidates, 3);
+            self.errors.push(ModelError::UnknownName {
+                what,
+                name,
+                place,
+                suggestions,
+            });
+            return None;
+        }
+        Some(r)
+    }
+
+    fn connections(&mut self, order: &[&System]) {
+        let nv = self.flat.variables.len();
+        let mut pot_parent: Vec<usize> = (0..nv).collect();
+        // Flow connection sets over elements (connector, inside?).
+        let mut elem_index: HashMap<(usize, bool), usize> = HashMap::new();
+        let mut elems: Vec<(usize, bool)> = Vec::new();
+        let mut elem_parent: Vec<usize> = Vec::new();
+        for s in order {
+            for c in &s.connections {
+                let text = format!(
+                    "{}connect({}, {})",
+                    if s.path.is_empty() {
+                        String::new()
+                    } else {
+                        format!("{}: ", s.path)
+                    },
+                    c.a,
+                    c.b
+                );
+                let Some(ia) = self.resolve_connector(s, &c.a, &text) else {
+                    continue;
+                };
+                let Some(ib) = self.resolve_connector(s, &c.b, &text) else {
+                    continue;
+                };
+                let (ca, cb) = (&self.connectors[ia], &self.connectors[ib]);
+                if ca.class != cb.class || ca.vars.len() != cb.vars.len() {
+                    self.errors.push(ModelError::IncompatibleConnectors {
+                        connection: text,
+                        a: join_path(&s.path, &c.a),
+                        class_a: ca.class.clone(),
+                        b: join_path(&s.path, &c.b),
+                        class_b: cb.class.clone(),
+                    });
+                    continue;
+                }
+                let inside_a = ca.owner != s.path;
+                let inside_b = cb.owner != s.path;
+                let pairs: Vec<((usize, VarKind), (usize, VarKind))> = ca
+                    .vars
+                    .iter()
+                    .copied()
+                    .zip(cb.vars.iter().copied())
+                    .collect();
+                for ((va, ka), (vb, _)) in pairs {
+                    if ka == VarKind::Flow {
+                        continue;
+                    }
+                    let (ra, rb) = (
+                        union_find_root(&mut pot_parent, va),
+                        union_find_root(&mut pot_parent, vb),
+                    );
+                    if ra != rb {
+                        pot_parent[ra] = rb;
+                        let (xa, xb) = (
+                            self.flat.arena.var(va as u32),
+                            self.flat.arena.var(vb as u32),
+                        );
+                        let r = self.flat.arena.sub(xa, xb);
+                        self.flat.equations.push(FlatEquation {
+                            residual: r,
+                            origin: Origin::Connect {
+                                a: self.flat.variables[va].name.clone(),
+                                b: self.flat.variables[vb].name.clone(),
+                            },
+                        });
+                    }
+                }
+                let mut elem = |key: (usize, bool)| -> usize {
+                    *elem_index.entry(key).or_insert_with(|| {
+                        elems.push(key);
+                        elem_parent.push(elem_parent.len());
+                        elem_parent.len() - 1
+                    })
+                };
+                let (ea, eb) = (elem((ia, inside_a)), elem((ib, inside_b)));
+                let (ra, rb) = (
+                    union_find_root(&mut elem_parent, ea),
+                    union_find_root(&mut elem_parent, eb),
+                );
+                if ra != rb {
+                    elem_parent[ra] = rb;
+                }
+                if inside_a {
+                    self.connectors[ia].connected_inside = true;
+                }
+                if inside_b {
+                    self.connectors[ib].connected_inside = true;
+                }
+            }
+        }
+        // Flow sums, one per set and flow position.
+        let mut sets: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut set_order = Vec::new();
+        for i in 0..elems.len() {
+            let r = union_find_root(&mut elem_parent, i);
+            let e = sets.entry(r).or_default();
+            if e.is_empty() {
+                set_order.push(r);
+            }
+            e.push(i);
+        }
+        for r in set_order {
+            let members = &sets[&r];
+            let (c0, _) = elems[members[0]];
+            let nflows = self.connectors[c0].vars.len();
+            for k in 0..nflows {
+                if self.connectors[c0].vars[k].1 != VarKind::Flow {
+                    continue;
+                }
+                let mut terms = Vec::new();
+                let mut names = Vec::new();
+                for &m in members {
+                    let (c, inside) = elems[m];
+                    let v = self.connectors[c].vars[k].0;
+                    let x = self.flat.arena.var(v as u32);
+                    terms.push((if inside { 1.0 } else { -1.0 }, x));
+                    let n = &self.flat.variables[v].name;
+                    names.push(if inside { n.clone() } else { format!("-{n}") });
+                }
+                let r = self.flat.arena.linear_combination(0.0, &terms);
+                self.flat.equations.push(FlatEquation {
+                    residual: r,
+                    origin: Origin::FlowSum { flows: names },
+                });
+            }
+        }
+        // Flows of connectors never connected from outside are zero.
+        for c in 0..self.connectors.len() {
+            if self.connectors[c].connected_inside {
+                continue;
+            }
+            for k in 0..self.connectors[c].vars.len() {
+                let (v, kind) = self.connectors[c].vars[k];
+                if kind == VarKind::Flow {
+                    let x = self.flat.arena.var(v as u32);
+                    self.flat.equations.push(FlatEquation {
+                        residual: x,
+                        origin: Origin::UnconnectedFlow {
+                            flow: self.flat.variables[v].name.clone(),
+                        },
+                    });
+                }
+            }
+        }
+    }
+
+    fn resolve_connector(&mut self, s: &System, local: &str, text: &str) -> Option<usize> {
+        let full = join_path(&s.path, local);
+        if let Some(&i) = self.connector_of_path.get(&full) {
+            return Some(i);
+        }
+        let prefix = if s.path.is_empty() {
+            String::new()
+        } else {
+            format!("{}.", s.path)
+        };
+        let candidates: Vec<&str> = self
+            .connector_of_path
+            .keys()
+            .filter(|k| k.starts_with(&prefix))
+            .map(|k| k.as_str())
+            .collect();
+        let mut candidates = candidates;
+        candidates.sort();
+        let suggestions = closest(&full, candidates, 3);
+        self.errors.push(ModelError::UnknownConnector {
+            connection: text.to_string(),
+            name: full,
+            suggestions,
+        });
+        None
+    }
+}

@@ -1,0 +1,17 @@
+//! Models: variables, parameters, systems, connectors, `connect`, flattening and the
+//! balance check.
+
+mod balance;
+mod error;
+mod flatten;
+mod system;
+mod variable;
+
+pub use balance::check_balance;
+pub use error::ModelError;
+pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
+pub use system::{Component, Connection, Equation, System, join_path};
+pub use variable::{Parameter, StateSelect, VarKind, Variable};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,222 @@
+//! Systems: the tree of components a model is built from (the builder API).
+
+use crate::expr::Expr;
+
+use super::variable::{Parameter, VarKind, Variable};
+
+/// A reusable model part: a component (Inertia, Resistor, ...) or a connector type
+/// (Flange, Pin, ...). `build` declares its variables, parameters, sub-components,
+/// connectors and equations into a [`System`] whose path is already set; structural
+/// parameters are plain Rust values used while building.
+pub trait Component {
+    /// Type name for messages, e.g. `Rotational.Inertia`.
+    fn type_name(&self) -> String;
+    /// For connector types: the class that decides which connectors may be connected
+    /// (equal classes connect). `None` for ordinary components.
+    fn connector_class(&self) -> Option<String> {
+        None
+    }
+    /// Declares the component's contents into `s`.
+    fn build(&self, s: &mut System);
+}
+
+/// An equation `lhs = rhs`.
+#[derive(Clone, Copy, Debug)]
+pub struct Equation {
+    /// Left-hand side.
+    pub lhs: Expr,
+    /// Right-hand side.
+    pub rhs: Expr,
+}
+
+impl Equation {
+    /// `lhs - rhs`, which the equation sets to zero.
+    pub fn residual(&self) -> Expr {
+        self.lhs - self.rhs
+    }
+}
+
+/// A `connect(a, b)` statement: connector paths relative to the system holding it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Connection {
+    /// First connector, e.g. `inertia.flange_b`.
+    pub a: String,
+    /// Second connector.
+    pub b: String,
+}
+
+/// A node of the model tree: a component instance (or the whole model) with its
+/// declarations. Names of everything declared are full paths (`motor.emf.phi`); the
+/// root's path is empty so top-level names carry no prefix.
+#[derive(Clone, Debug)]
+pub struct System {
+    /// Local name (`emf`); for the root, the model's name.
+    pub name: String,
+    /// Full path (`motor.emf`); empty for the root.
+    pub path: String,
+    /// Type name for messages.
+    pub type_name: String,
+    /// For connectors, the class that must match across a connection.
+    pub connector_class: Option<String>,
+    /// Unknowns declared here.
+    pub variables: Vec<Variable>,
+    /// Tunable parameters declared here.
+    pub parameters: Vec<Parameter>,
+    /// Equations.
+    pub equations: Vec<Equation>,
+    /// Initial equations (hold at the initial time only).
+    pub initial_equations: Vec<Equation>,
+    /// Sub-components and connectors.
+    pub subsystems: Vec<System>,
+    /// Connections among connectors of this system and its sub-components.
+    pub connections: Vec<Connection>,
+}
+
+/// Joins a path and a local name with a dot (an empty side is left out).
+pub fn join_path(path: &str, local: &str) -> String {
+    match (path.is_empty(), local.is_empty()) {
+        (true, _) => local.to_string(),
+        (_, true) => path.to_string(),
+        _ => format!("{path}.{local}"),
+    }
+}
+
+impl System {
+    /// A new, empty model (the root of a tree).
+    pub fn new(name: impl Into<String>) -> Self {
+        Self::with_path(name.into(), String::new(), "Model".into(), None)
+    }
+
+    fn with_path(
+        name: String,
+        path: String,
+        type_name: String,
+        connector_class: Option<String>,
+    ) -> Self {
+        System {
+            name,
+            path,
+            type_name,
+            connector_class,
+            variables: Vec::new(),
+            parameters: Vec::new(),
+            equations: Vec::new(),
+            initial_equations: Vec::new(),
+            subsystems: Vec::new(),
+            connections: Vec::new(),
+        }
+    }
+
+    /// A model holding a single component as `name` (for simulating a component alone).
+    pub fn from_component(name: &str, c: &dyn Component) -> Self {
+        let mut s = System::new(name);
+        s.type_name = c.type_name();
+        c.build(&mut s);
+        s
+    }
+
+    /// Full path of a name local to this system.
+    pub fn full(&self, local: &str) -> String {
+        join_path(&self.path, local)
+    }
+
+    /// Declares an unknown with default attributes and returns it.
+    pub fn var(&mut self, local: &str) -> Expr {
+        self.variable(Variable::new(local))
+    }
+
+    /// Declares an unknown (its `name` is local to this system) and returns it.
+    pub fn variable(&mut self, mut v: Variable) -> Expr {
+        v.name = self.full(&v.name);
+        let e = Expr::var(&v.name);
+        self.variables.push(v);
+        e
+    }
+
+    /// Declares a connector variable of the given kind (a local name of `""` makes the
+    /// variable the connector itself, as Modelica's `RealInput`).
+    pub fn connector_var(&mut self, local: &str, kind: VarKind) -> Expr {
+        self.variable(Variable::new(local).kind(kind))
+    }
+
+    /// Declares a tunable parameter with a default value and returns it.
+    pub fn param(&mut self, local: &str, default: impl Into<Expr>) -> Expr {
+        self.parameter(Parameter::new(local, default))
+    }
+
+    /// Declares a tunable parameter (its `name` is local) and returns it.
+    pub fn parameter(&mut self, mut p: Parameter) -> Expr {
+        p.name = self.full(&p.name);
+        let e = Expr::param(&p.name);
+        self.parameters.push(p);
+        e
+    }
+
+    /// The unknown at a path relative to this system (`flange_a.phi`). Whether it exists
+    /// is checked when the model is flattened.
+    pub fn v(&self, local_path: &str) -> Expr {
+        Expr::var(&self.full(local_path))
+    }
+
+    /// The parameter at a path relative to this system.
+    pub fn p(&self, local_path: &str) -> Expr {
+        Expr::param(&self.full(local_path))
+    }
+
+    /// Adds the equation `lhs = rhs`.
+    pub fn equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
+        self.equations.push(Equation {
+            lhs: lhs.into(),
+            rhs: rhs.into(),
+        });
+    }
+
+    /// Adds an initial equation `lhs = rhs`.
+    pub fn initial_equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
+        self.initial_equations.push(Equation {
+            lhs: lhs.into(),
+            rhs: rhs.into(),
+        });
+    }
+
+    /// Adds a sub-component (or connector) instance named `local` and returns it.
+    pub fn add(&mut self, local: &str, c: &dyn Component) -> &mut System {
+        let mut sub = System::with_path(
+            local.to_string(),
+            self.full(local),
+            c.type_name(),
+            c.connector_class(),
+        );
+        c.build(&mut sub);
+        self.subsystems.push(sub);
+        self.subsystems.last_mut().expect("just pushed")
+    }
+
+    /// Declares `extends`: builds a partial component's declarations into this same
+    /// system (no new name level), as Modelica's `extends PartialCompliant`.
+    pub fn extend(&mut self, c: &dyn Component) {
+        c.build(self);
+    }
+
+    /// Connects two connectors given by paths relative to this system.
+    pub fn connect(&mut self, a: &str, b: &str) {
+        self.connections.push(Connection {
+            a: a.to_string(),
+            b: b.to_string(),
+        });
+    }
+
+    /// The sub-system at a relative path (`motor.emf`), if any.
+    pub fn subsystem(&self, local_path: &str) -> Option<&System> {
+        let mut cur = self;
+        for part in local_path.split('.') {
+            cur = cur.subsystems.iter().find(|s| s.name == part)?;
+        }
+        Some(cur)
+    }
+
+    /// Whether this system is a connector.
+    pub fn is_connector(&self) -> bool {
+        self.connector_class.is_some()
+    }
+}

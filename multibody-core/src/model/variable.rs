@@ -1,0 +1,182 @@
+//! Declarations of unknowns and parameters.
+
+use crate::expr::Expr;
+
+/// What a variable is to connections.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarKind {
+    /// An ordinary unknown of a component.
+    Internal,
+    /// A potential (across) variable of a connector: equal in a connection set.
+    Potential,
+    /// A flow (through) variable of a connector: sums to zero in a connection set.
+    Flow,
+    /// A causal input signal of a connector: equal to the output it is connected to.
+    Input,
+    /// A causal output signal of a connector.
+    Output,
+}
+
+/// Modelica's `StateSelect`, mapped onto [`Variable::state_priority`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StateSelect {
+    /// Never a state (priority -100).
+    Never,
+    /// Avoid as a state (priority -1).
+    Avoid,
+    /// No preference (priority 0).
+    Default,
+    /// Prefer as a state (priority 10).
+    Prefer,
+    /// Must be a state (priority 1000, a hard requirement).
+    Always,
+}
+
+impl StateSelect {
+    /// The state priority this choice stands for.
+    pub fn priority(self) -> f64 {
+        match self {
+            StateSelect::Never => -100.0,
+            StateSelect::Avoid => -1.0,
+            StateSelect::Default => 0.0,
+            StateSelect::Prefer => 10.0,
+            StateSelect::Always => 1000.0,
+        }
+    }
+}
+
+/// An unknown of the model.
+#[derive(Clone, Debug)]
+pub struct Variable {
+    /// Full path, e.g. `motor.inertia.phi`.
+    pub name: String,
+    /// Start value (a constant or an expression of parameters); default: none (0).
+    pub start: Option<Expr>,
+    /// Whether the start value must hold at the initial time (default: false, so the
+    /// start value is only a guess).
+    pub fixed: bool,
+    /// Initial guess for iterations, when different from the start value (default: none).
+    pub guess: Option<f64>,
+    /// Description for documentation and messages (default: empty).
+    pub description: String,
+    /// Unit, e.g. `rad` (default: empty).
+    pub unit: String,
+    /// Preference for being chosen as a state: higher stays a state (default 0).
+    pub state_priority: f64,
+    /// Role in connections (default: [`VarKind::Internal`]).
+    pub kind: VarKind,
+}
+
+impl Variable {
+    /// An internal unknown with no start value.
+    pub fn new(name: impl Into<String>) -> Self {
+        Variable {
+            name: name.into(),
+            start: None,
+            fixed: false,
+            guess: None,
+            description: String::new(),
+            unit: String::new(),
+            state_priority: 0.0,
+            kind: VarKind::Internal,
+        }
+    }
+
+    /// Sets the start value.
+    pub fn start(mut self, value: impl Into<Expr>) -> Self {
+        self.start = Some(value.into());
+        self
+    }
+
+    /// Sets whether the start value is fixed.
+    pub fn fixed(mut self, fixed: bool) -> Self {
+        self.fixed = fixed;
+        self
+    }
+
+    /// Sets the iteration guess.
+    pub fn guess(mut self, value: f64) -> Self {
+        self.guess = Some(value);
+        self
+    }
+
+    /// Sets the description.
+    pub fn description(mut self, text: impl Into<String>) -> Self {
+        self.description = text.into();
+        self
+    }
+
+    /// Sets the unit.
+    pub fn unit(mut self, unit: impl Into<String>) -> Self {
+        self.unit = unit.into();
+        self
+    }
+
+    /// Sets the state priority.
+    pub fn state_priority(mut self, p: f64) -> Self {
+        self.state_priority = p;
+        self
+    }
+
+    /// Sets the state priority from a Modelica `StateSelect`.
+    pub fn state_select(mut self, s: StateSelect) -> Self {
+        self.state_priority = s.priority();
+        self
+    }
+
+    /// Sets the connection role.
+    pub fn kind(mut self, kind: VarKind) -> Self {
+        self.kind = kind;
+        self
+    }
+}
+
+/// A tunable parameter: a value of the compiled problem, changeable without
+/// recompiling. (Structural parameters are plain Rust values folded in when the
+/// component is built.)
+#[derive(Clone, Debug)]
+pub struct Parameter {
+    /// Full path, e.g. `motor.R`.
+    pub name: String,
+    /// Default value or binding expression of other parameters (default: none, which is
+    /// an error unless the parameter is computed at initialization).
+    pub value: Option<Expr>,
+    /// `false` means the parameter is computed during initialization (MSL
+    /// `fixed=false`), its value only a guess (default: true).
+    pub fixed: bool,
+    /// Description (default: empty).
+    pub description: String,
+    /// Unit (default: empty).
+    pub unit: String,
+}
+
+impl Parameter {
+    /// A parameter with a default value.
+    pub fn new(name: impl Into<String>, value: impl Into<Expr>) -> Self {
+        Parameter {
+            name: name.into(),
+            value: Some(value.into()),
+            fixed: true,
+            description: String::new(),
+            unit: String::new(),
+        }
+    }
+
+    /// Sets whether the parameter is fixed (false: computed at initialization).
+    pub fn fixed(mut self, fixed: bool) -> Self {
+        self.fixed = fixed;
+        self
+    }
+
+    /// Sets the description.
+    pub fn description(mut self, text: impl Into<String>) -> Self {
+        self.description = text.into();
+        self
+    }
+
+    /// Sets the unit.
+    pub fn unit(mut self, unit: impl Into<String>) -> Self {
+        self.unit = unit.into();
+        self
+    }
+}

@@ -1,0 +1,76 @@
+//! Name suggestions for messages about unknown names.
+
+/// Edit distance between two strings (Levenshtein, by characters).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut cur = vec![0; b.len() + 1];
+    for i in 1..=a.len() {
+        cur[0] = i;
+        for j in 1..=b.len() {
+            let sub = prev[j - 1] + usize::from(a[i - 1] != b[j - 1]);
+            cur[j] = sub.min(prev[j] + 1).min(cur[j - 1] + 1);
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    prev[b.len()]
+}
+
+/// Up to `n` candidates closest to `name`, nearest first (ties in the candidates' order);
+/// candidates that share `name`'s last path component come first.
+pub fn closest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+    n: usize,
+) -> Vec<String> {
+    let last = name.rsplit('.').next().unwrap_or(name);
+    let mut scored: Vec<(usize, usize, &str)> = candidates
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let mut d = edit_distance(name, c);
+            if c.rsplit('.').next() == Some(last) {
+                d = d.saturating_sub(2);
+            }
+            (d, i, c)
+        })
+        .collect();
+    scored.sort();
+    scored
+        .into_iter()
+        .take(n)
+        .map(|(_, _, c)| c.to_string())
+        .collect()
+}
+
+/// Formats a list of names as `a, b, c` (at most `max` of them, then `... (N more)`).
+pub fn list(names: &[String], max: usize) -> String {
+    if names.len() <= max {
+        names.join(", ")
+    } else {
+        format!(
+            "{}, ... ({} more)",
+            names[..max].join(", "),
+            names.len() - max
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_and_suggestions() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let c = ["j1.phi", "j1.w", "j2.s", "j2.v"];
+        assert_eq!(closest("j1.ph", c, 2), vec!["j1.phi", "j1.w"]);
+        assert_eq!(closest("j3.s", c, 1), vec!["j2.s"]);
+        assert_eq!(
+            list(&["a".into(), "b".into(), "c".into()], 2),
+            "a, b, ... (1 more)"
+        );
+    }
+}

@@ -1,0 +1,1474 @@
+//! Integration of implicit DAEs `F(t, y, y') = 0` with SUNDIALS IDA.
+//!
+//! This module is the single place where the project talks to SUNDIALS
+//! through FFI. [`integrate`] creates a SUNDIALS context, the IDA memory,
+//! vectors, the iteration matrix and a linear solver, runs the integration and
+//! frees everything again (also on every error path) through an RAII guard.
+//!
+//! Model code implements [`DaeFunctions`]; failures inside model callbacks are
+//! reported as [`EvalError`] and never unwind into C (panics are caught and
+//! turned into unrecoverable callback failures). SUNDIALS' own printing to
+//! stderr/stdout is switched off; its messages are forwarded to the `log`
+//! crate and included in [`IdaError`].
+
+use std::ffi::{CStr, c_char, c_int, c_long, c_void};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::ptr;
+
+use sundials_sys as sys;
+
+use super::linsol;
+
+/// Error from a model function evaluation inside a callback.
+#[derive(Debug, Clone)]
+pub struct EvalError {
+    /// Human-readable description of what went wrong.
+    pub message: String,
+    /// `true` if IDA may retry with a smaller step (e.g. a value outside the
+    /// domain of a function), `false` to stop the integration.
+    pub recoverable: bool,
+}
+
+/// The DAE F(t, y, y') = 0 with its Jacobian J = dF/dy + cj dF/dy'.
+pub trait DaeFunctions {
+    /// Number of unknowns (and equations).
+    fn len(&self) -> usize;
+    /// Returns `true` if the system has no unknowns.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Evaluates the residual `out = F(t, y, y')`.
+    fn residual(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64])
+    -> Result<(), EvalError>;
+    /// CSC sparsity pattern of J: (col_ptr of len n+1, row_idx sorted within each column). None = no analytic Jacobian (only allowed with LinearSolver::DenseDifferenceQuotient).
+    fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)>;
+    /// Values of J in the CSC order of the pattern.
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        yp: &[f64],
+        cj: f64,
+        values: &mut [f64],
+    ) -> Result<(), EvalError>;
+}
+
+/// Linear solver used for IDA's Newton iteration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinearSolver {
+    /// SUNDIALS dense matrix filled from the analytic Jacobian
+    Dense,
+    /// SUNDIALS dense with IDA's difference-quotient Jacobian (no jacobian() calls)
+    DenseDifferenceQuotient,
+    /// SUNSparseMatrix (CSC) + faer sparse LU, symbolic analysis reused while the pattern is unchanged
+    SparseLu,
+}
+
+/// Settings of an IDA integration.
+#[derive(Clone, Debug)]
+pub struct IdaSettings {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Scalar absolute tolerance (used when `atol_vector` is `None`).
+    pub atol: f64,
+    /// Per-component absolute tolerances (length n).
+    pub atol_vector: Option<Vec<f64>>,
+    /// Maximum step size (IDASetMaxStep).
+    pub max_step: Option<f64>,
+    /// Initial step size (IDASetInitStep).
+    pub initial_step: Option<f64>,
+    /// Maximum number of internal steps per output interval (IDASetMaxNumSteps).
+    pub max_steps: usize,
+    /// 1.0 differential, 0.0 algebraic (IDASetId); empty means all differential.
+    pub id: Vec<f64>,
+    /// Exclude algebraic components from the local error test (IDASetSuppressAlg);
+    /// only applied when `id` is given.
+    pub suppress_alg: bool,
+    /// Linear solver for the Newton iteration.
+    pub linear_solver: LinearSolver,
+    /// run IDACalcIC(IDA_YA_YDP_INIT) before integrating
+    pub calc_ic: bool,
+}
+
+impl Default for IdaSettings {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-6,
+            atol: 1e-8,
+            atol_vector: None,
+            max_step: None,
+            initial_step: None,
+            max_steps: 100_000,
+            id: Vec::new(),
+            suppress_alg: true,
+            linear_solver: LinearSolver::SparseLu,
+            calc_ic: false,
+        }
+    }
+}
+
+/// Which times are reported to the output callback.
+#[derive(Clone, Debug, PartialEq)]
+pub enum OutputMode {
+    /// IDA_NORMAL to each of these times (sorted, > t0)
+    Times(Vec<f64>),
+    /// IDA_ONE_STEP with IDASetStopTime(t_end): report every internal step
+    EveryStep {
+        /// Final time; the last reported time equals it exactly.
+        t_end: f64,
+    },
+}
+
+/// Integrator statistics at the end of an integration.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct IdaStats {
+    /// Internal steps taken.
+    pub steps: u64,
+    /// Residual evaluations, including those for difference-quotient Jacobians.
+    pub residual_evals: u64,
+    /// Jacobian evaluations (analytic or difference quotient).
+    pub jacobian_evals: u64,
+    /// Local error test failures.
+    pub error_test_failures: u64,
+    /// Nonlinear (Newton) iterations.
+    pub nonlinear_iterations: u64,
+    /// Nonlinear solver convergence failures.
+    pub nonlinear_convergence_failures: u64,
+    /// Linear solver setups (Jacobian evaluation + factorization).
+    pub linear_setups: u64,
+}
+
+/// Failure of an IDA integration.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("IDA failed at t = {t}: {flag} ({message})")]
+pub struct IdaError {
+    /// Last time reached by the integrator (t0 for setup errors).
+    pub t: f64,
+    /// Name of the IDA return flag (e.g. `IDA_CONV_FAIL`), or `INVALID_INPUT`
+    /// / `SETUP_FAILED` for errors detected before integrating.
+    pub flag: String,
+    /// Explanation in words.
+    pub message: String,
+}
+
+fn invalid(t: f64, message: impl Into<String>) -> IdaError {
+    IdaError {
+        t,
+        flag: "INVALID_INPUT".into(),
+        message: message.into(),
+    }
+}
+
+/// Which callback produced an [`EvalError`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Origin {
+    Residual,
+    Jacobian,
+}
+
+/// State shared with the C callbacks through IDA's user-data pointer.
+struct CallbackData<'a> {
+    f: &'a mut dyn DaeFunctions,
+    n: usize,
+    solver: LinearSolver,
+    /// Validated pattern (usize, for scattering into the dense matrix).
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Same pattern as SUNDIALS indices (written into the sparse matrix).
+    col_ptr_i: Vec<sys::sunindextype>,
+    row_idx_i: Vec<sys::sunindextype>,
+    /// Jacobian values buffer for the dense path.
+    values: Vec<f64>,
+    /// Last failure reported by a model callback.
+    last_error: Option<(f64, Origin, EvalError)>,
+}
+
+impl CallbackData<'_> {
+    fn record(&mut self, t: f64, origin: Origin, e: EvalError) -> c_int {
+        let code = if e.recoverable { 1 } else { -1 };
+        log::debug!(
+            "{origin:?} evaluation failed at t = {t} (recoverable: {}): {}",
+            e.recoverable,
+            e.message
+        );
+        self.last_error = Some((t, origin, e));
+        code
+    }
+}
+
+/// Receives SUNDIALS error messages instead of printing them.
+#[derive(Default)]
+struct ErrSink {
+    last: Option<String>,
+}
+
+/// Owns every SUNDIALS object of one integration and frees them in Drop.
+struct Guard<'a> {
+    ctx: sys::SUNContext,
+    mem: *mut c_void,
+    ls: sys::SUNLinearSolver,
+    mat: sys::SUNMatrix,
+    vectors: Vec<sys::N_Vector>,
+    data: *mut CallbackData<'a>,
+    sink: *mut ErrSink,
+}
+
+impl Drop for Guard<'_> {
+    fn drop(&mut self) {
+        // SAFETY: every pointer is either null or owned by this guard and was
+        // created by the matching SUNDIALS constructor / Box::into_raw. The
+        // context is freed last, the boxes referenced by it after that.
+        unsafe {
+            if !self.mem.is_null() {
+                sys::IDAFree(&mut self.mem);
+                self.mem = ptr::null_mut();
+            }
+            if !self.ls.is_null() {
+                sys::SUNLinSolFree(self.ls);
+                self.ls = ptr::null_mut();
+            }
+            if !self.mat.is_null() {
+                sys::SUNMatDestroy(self.mat);
+                self.mat = ptr::null_mut();
+            }
+            for v in self.vectors.drain(..) {
+                if !v.is_null() {
+                    sys::N_VDestroy(v);
+                }
+            }
+            if !self.ctx.is_null() {
+                sys::SUNContext_Free(&mut self.ctx);
+                self.ctx = ptr::null_mut();
+            }
+            if !self.data.is_null() {
+                drop(Box::from_raw(self.data));
+                self.data = ptr::null_mut();
+            }
+            if !self.sink.is_null() {
+                drop(Box::from_raw(self.sink));
+                self.sink = ptr::null_mut();
+            }
+        }
+    }
+}
+
+impl Guard<'_> {
+    /// Creates a serial vector owned by the guard, filled with `values`.
+    fn vector(&mut self, values: &[f64]) -> Result<sys::N_Vector, String> {
+        let len =
+            sys::sunindextype::try_from(values.len()).map_err(|_| "vector too long".to_string())?;
+        // SAFETY: ctx is valid; the new vector has `values.len()` entries.
+        unsafe {
+            let v = sys::N_VNew_Serial(len, self.ctx);
+            if v.is_null() {
+                return Err("N_VNew_Serial failed".into());
+            }
+            self.vectors.push(v);
+            if !values.is_empty() {
+                let p = sys::N_VGetArrayPointer(v);
+                if p.is_null() {
+                    return Err("N_VGetArrayPointer returned null".into());
+                }
+                ptr::copy_nonoverlapping(values.as_ptr(), p, values.len());
+            }
+            Ok(v)
+        }
+    }
+
+    /// Takes the last SUNDIALS error message, if any.
+    fn take_sundials_message(&mut self) -> Option<String> {
+        // SAFETY: sink is owned by the guard and not borrowed elsewhere while
+        // no SUNDIALS call is running.
+        unsafe { self.sink.as_mut().and_then(|s| s.last.take()) }
+    }
+
+    fn take_eval_error(&mut self) -> Option<(f64, Origin, EvalError)> {
+        // SAFETY: as above; callbacks only run inside SUNDIALS calls.
+        unsafe { self.data.as_mut().and_then(|d| d.last_error.take()) }
+    }
+
+    /// Builds an [`IdaError`] for a failed SUNDIALS call.
+    fn error(&mut self, t: f64, flag: c_int, context: &str, settings: &IdaSettings) -> IdaError {
+        let eval = self.take_eval_error();
+        let sundials = self.take_sundials_message();
+        let mut message = describe_flag(flag, eval.as_ref(), settings);
+        if !context.is_empty() {
+            message = format!("{context}: {message}");
+        }
+        let eval_used = matches!(
+            flag,
+            sys::IDA_RES_FAIL
+                | sys::IDA_REP_RES_ERR
+                | sys::IDA_FIRST_RES_FAIL
+                | sys::IDA_NO_RECOVERY
+        ) || (matches!(flag, sys::IDA_LSETUP_FAIL)
+            && matches!(eval, Some((_, Origin::Jacobian, _))));
+        if let (false, Some((te, origin, e))) = (eval_used, &eval) {
+            message.push_str(&format!(
+                "; last model evaluation error ({}) at t = {te}: {}",
+                origin_name(*origin),
+                e.message
+            ));
+        }
+        if let Some(s) = sundials {
+            message.push_str(&format!(" [SUNDIALS: {}]", s.trim()));
+        }
+        IdaError {
+            t,
+            flag: flag_name(flag),
+            message,
+        }
+    }
+
+    fn check(
+        &mut self,
+        flag: c_int,
+        t: f64,
+        what: &str,
+        settings: &IdaSettings,
+    ) -> Result<(), IdaError> {
+        if flag < 0 {
+            let mut e = self.error(t, flag, what, settings);
+            if e.flag.starts_with("IDA_UNKNOWN") {
+                e.flag = "SETUP_FAILED".into();
+            }
+            Err(e)
+        } else {
+            Ok(())
+        }
+    }
+
+    fn setup_failed(&mut self, t: f64, message: String) -> IdaError {
+        let mut message = message;
+        if let Some(s) = self.take_sundials_message() {
+            message.push_str(&format!(" [SUNDIALS: {}]", s.trim()));
+        }
+        IdaError {
+            t,
+            flag: "SETUP_FAILED".into(),
+            message,
+        }
+    }
+}
+
+fn origin_name(o: Origin) -> &'static str {
+    match o {
+        Origin::Residual => "residual",
+        Origin::Jacobian => "Jacobian",
+    }
+}
+
+/// Name of an IDA return flag.
+fn flag_name(flag: c_int) -> String {
+    let s = match flag {
+        sys::IDA_SUCCESS => "IDA_SUCCESS",
+        sys::IDA_TSTOP_RETURN => "IDA_TSTOP_RETURN",
+        sys::IDA_ROOT_RETURN => "IDA_ROOT_RETURN",
+        sys::IDA_WARNING => "IDA_WARNING",
+        sys::IDA_TOO_MUCH_WORK => "IDA_TOO_MUCH_WORK",
+        sys::IDA_TOO_MUCH_ACC => "IDA_TOO_MUCH_ACC",
+        sys::IDA_ERR_FAIL => "IDA_ERR_FAIL",
+        sys::IDA_CONV_FAIL => "IDA_CONV_FAIL",
+        sys::IDA_LINIT_FAIL => "IDA_LINIT_FAIL",
+        sys::IDA_LSETUP_FAIL => "IDA_LSETUP_FAIL",
+        sys::IDA_LSOLVE_FAIL => "IDA_LSOLVE_FAIL",
+        sys::IDA_RES_FAIL => "IDA_RES_FAIL",
+        sys::IDA_REP_RES_ERR => "IDA_REP_RES_ERR",
+        sys::IDA_RTFUNC_FAIL => "IDA_RTFUNC_FAIL",
+        sys::IDA_CONSTR_FAIL => "IDA_CONSTR_FAIL",
+        sys::IDA_FIRST_RES_FAIL => "IDA_FIRST_RES_FAIL",
+        sys::IDA_LINESEARCH_FAIL => "IDA_LINESEARCH_FAIL",
+        sys::IDA_NO_RECOVERY => "IDA_NO_RECOVERY",
+        sys::IDA_NLS_INIT_FAIL => "IDA_NLS_INIT_FAIL",
+        sys::IDA_NLS_SETUP_FAIL => "IDA_NLS_SETUP_FAIL",
+        sys::IDA_NLS_FAIL => "IDA_NLS_FAIL",
+        sys::IDA_MEM_NULL => "IDA_MEM_NULL",
+        sys::IDA_MEM_FAIL => "IDA_MEM_FAIL",
+        sys::IDA_ILL_INPUT => "IDA_ILL_INPUT",
+        sys::IDA_NO_MALLOC => "IDA_NO_MALLOC",
+        sys::IDA_BAD_EWT => "IDA_BAD_EWT",
+        sys::IDA_BAD_K => "IDA_BAD_K",
+        sys::IDA_BAD_T => "IDA_BAD_T",
+        sys::IDA_BAD_DKY => "IDA_BAD_DKY",
+        sys::IDA_VECTOROP_ERR => "IDA_VECTOROP_ERR",
+        sys::IDA_CONTEXT_ERR => "IDA_CONTEXT_ERR",
+        other => return format!("IDA_UNKNOWN({other})"),
+    };
+    s.to_string()
+}
+
+/// Explains an IDA return flag in words.
+fn describe_flag(
+    flag: c_int,
+    eval: Option<&(f64, Origin, EvalError)>,
+    settings: &IdaSettings,
+) -> String {
+    let eval_msg = |what: &str| match eval {
+        Some((t, o, e)) => format!(
+            "{what}: {} (in the {} function at t = {t})",
+            e.message,
+            origin_name(*o)
+        ),
+        None => format!("{what}: no message"),
+    };
+    match flag {
+        sys::IDA_TOO_MUCH_WORK => format!(
+            "too many steps (max_steps = {}) before reaching the next output",
+            settings.max_steps
+        ),
+        sys::IDA_TOO_MUCH_ACC => "the requested accuracy could not be reached (rtol/atol too small)".into(),
+        sys::IDA_ERR_FAIL => {
+            "error test failed repeatedly (step size became too small; stiff or discontinuous?)".into()
+        }
+        sys::IDA_CONV_FAIL => {
+            "nonlinear solver failed to converge repeatedly (singular Jacobian or inconsistent model?)".into()
+        }
+        sys::IDA_LINIT_FAIL => "the linear solver could not be initialized".into(),
+        sys::IDA_LSETUP_FAIL => match eval {
+            Some((_, Origin::Jacobian, _)) => eval_msg("the Jacobian function failed"),
+            _ => "linear solver failed (singular iteration matrix)".into(),
+        },
+        sys::IDA_LSOLVE_FAIL => "linear solver failed (singular iteration matrix)".into(),
+        sys::IDA_RES_FAIL => eval_msg("the residual function failed"),
+        sys::IDA_REP_RES_ERR => eval_msg("the residual function failed recoverably and repeatedly"),
+        sys::IDA_FIRST_RES_FAIL => eval_msg("the residual function failed at the first call of the initial condition calculation"),
+        sys::IDA_NO_RECOVERY => eval_msg("the initial condition calculation could not recover from a failed evaluation"),
+        sys::IDA_LINESEARCH_FAIL => {
+            "the initial condition calculation failed in its line search (no consistent initial values found; bad id or initial guess?)".into()
+        }
+        sys::IDA_CONSTR_FAIL => "the initial condition calculation could not satisfy the constraints".into(),
+        sys::IDA_NLS_INIT_FAIL | sys::IDA_NLS_SETUP_FAIL | sys::IDA_NLS_FAIL => {
+            "the nonlinear solver failed unrecoverably".into()
+        }
+        sys::IDA_MEM_FAIL => "memory allocation failed".into(),
+        sys::IDA_ILL_INPUT => "invalid input to IDA".into(),
+        sys::IDA_BAD_EWT => {
+            "an error weight became non-positive (a component with zero absolute tolerance reached zero?)".into()
+        }
+        sys::IDA_BAD_T => "requested time outside the interval covered by the last step".into(),
+        sys::IDA_VECTOROP_ERR => "a vector operation failed".into(),
+        other => format!("IDA returned flag {other}"),
+    }
+}
+
+/// Creates a slice over a serial vector.
+///
+/// # Safety
+/// `v` must be a valid serial N_Vector of length `n` that is not mutated while
+/// the slice lives.
+unsafe fn vec_ref<'a>(v: sys::N_Vector, n: usize) -> &'a [f64] {
+    if n == 0 {
+        return &[];
+    }
+    // SAFETY: guaranteed by the caller.
+    unsafe { std::slice::from_raw_parts(sys::N_VGetArrayPointer(v), n) }
+}
+
+/// Mutable variant of [`vec_ref`].
+///
+/// # Safety
+/// As [`vec_ref`], and no other reference to the data may be live.
+unsafe fn vec_mut<'a>(v: sys::N_Vector, n: usize) -> &'a mut [f64] {
+    if n == 0 {
+        return &mut [];
+    }
+    // SAFETY: guaranteed by the caller.
+    unsafe { std::slice::from_raw_parts_mut(sys::N_VGetArrayPointer(v), n) }
+}
+
+fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = p.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = p.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic payload".into()
+    }
+}
+
+/// Records a caught panic as an unrecoverable evaluation error.
+///
+/// # Safety
+/// `ud` is the callback data pointer (or null) and not otherwise borrowed.
+unsafe fn record_panic(
+    ud: *mut c_void,
+    t: f64,
+    origin: Origin,
+    p: &(dyn std::any::Any + Send),
+) -> c_int {
+    let e = EvalError {
+        message: format!("panic in model function: {}", panic_message(p)),
+        recoverable: false,
+    };
+    // SAFETY: guaranteed by the caller.
+    match unsafe { ud.cast::<CallbackData<'_>>().as_mut() } {
+        Some(d) => d.record(t, origin, e),
+        None => -1,
+    }
+}
+
+unsafe extern "C" fn residual_cb(
+    t: sys::sunrealtype,
+    yy: sys::N_Vector,
+    yp: sys::N_Vector,
+    rr: sys::N_Vector,
+    ud: *mut c_void,
+) -> c_int {
+    let r = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: ud points to the CallbackData owned by the guard; IDA passes
+        // three distinct serial vectors of length n.
+        unsafe {
+            let Some(d) = ud.cast::<CallbackData<'_>>().as_mut() else {
+                return -1;
+            };
+            let n = d.n;
+            let (y, ypv, out) = (vec_ref(yy, n), vec_ref(yp, n), vec_mut(rr, n));
+            match d.f.residual(t, y, ypv, out) {
+                Ok(()) => match out.iter().position(|v| !v.is_finite()) {
+                    None => 0,
+                    Some(i) => d.record(
+                        t,
+                        Origin::Residual,
+                        EvalError {
+                            message: format!("residual component {i} is not finite"),
+                            recoverable: true,
+                        },
+                    ),
+                },
+                Err(e) => d.record(t, Origin::Residual, e),
+            }
+        }
+    }));
+    // SAFETY: the borrow inside the closure has ended.
+    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Origin::Residual, p.as_ref()) })
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe extern "C" fn jacobian_cb(
+    t: sys::sunrealtype,
+    cj: sys::sunrealtype,
+    yy: sys::N_Vector,
+    yp: sys::N_Vector,
+    _rr: sys::N_Vector,
+    jac: sys::SUNMatrix,
+    ud: *mut c_void,
+    _tmp1: sys::N_Vector,
+    _tmp2: sys::N_Vector,
+    _tmp3: sys::N_Vector,
+) -> c_int {
+    let r = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: ud points to the CallbackData owned by the guard; `jac` is
+        // the matrix created for the selected solver (dense n x n or CSC
+        // sparse with capacity >= nnz).
+        unsafe {
+            let Some(d) = ud.cast::<CallbackData<'_>>().as_mut() else {
+                return -1;
+            };
+            let n = d.n;
+            let (y, ypv) = (vec_ref(yy, n), vec_ref(yp, n));
+            let nnz = d.row_idx.len();
+            match d.solver {
+                LinearSolver::SparseLu => {
+                    let ptrs = sys::SUNSparseMatrix_IndexPointers(jac);
+                    let rows = sys::SUNSparseMatrix_IndexValues(jac);
+                    let data = sys::SUNSparseMatrix_Data(jac);
+                    if ptrs.is_null() || rows.is_null() || data.is_null() {
+                        return -1;
+                    }
+                    // IDA zeroes the matrix, including its pattern, before every call.
+                    ptr::copy_nonoverlapping(d.col_ptr_i.as_ptr(), ptrs, n + 1);
+                    ptr::copy_nonoverlapping(d.row_idx_i.as_ptr(), rows, nnz);
+                    let values = std::slice::from_raw_parts_mut(data, nnz);
+                    match d.f.jacobian(t, y, ypv, cj, values) {
+                        Ok(()) => 0,
+                        Err(e) => d.record(t, Origin::Jacobian, e),
+                    }
+                }
+                LinearSolver::Dense | LinearSolver::DenseDifferenceQuotient => {
+                    let CallbackData { f, values, .. } = &mut *d;
+                    if let Err(e) = f.jacobian(t, y, ypv, cj, values) {
+                        return d.record(t, Origin::Jacobian, e);
+                    }
+                    if let Some(k) = d.values.iter().position(|v| !v.is_finite()) {
+                        return d.record(
+                            t,
+                            Origin::Jacobian,
+                            EvalError {
+                                message: format!("Jacobian entry {k} is not finite"),
+                                recoverable: true,
+                            },
+                        );
+                    }
+                    let data = sys::SUNDenseMatrix_Data(jac);
+                    if data.is_null() {
+                        return -1;
+                    }
+                    let dense = std::slice::from_raw_parts_mut(data, n * n);
+                    dense.fill(0.0);
+                    for j in 0..n {
+                        for k in d.col_ptr[j]..d.col_ptr[j + 1] {
+                            dense[j * n + d.row_idx[k]] = d.values[k];
+                        }
+                    }
+                    0
+                }
+            }
+        }
+    }));
+    // SAFETY: the borrow inside the closure has ended.
+    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Origin::Jacobian, p.as_ref()) })
+}
+
+unsafe extern "C" fn error_handler_cb(
+    _line: c_int,
+    func: *const c_char,
+    _file: *const c_char,
+    msg: *const c_char,
+    err_code: sys::SUNErrCode,
+    err_user_data: *mut c_void,
+    _ctx: sys::SUNContext,
+) {
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: SUNDIALS passes NUL-terminated strings (or null) and the
+        // ErrSink pointer registered with the handler.
+        unsafe {
+            let text = |p: *const c_char| {
+                if p.is_null() {
+                    String::new()
+                } else {
+                    CStr::from_ptr(p).to_string_lossy().into_owned()
+                }
+            };
+            let (func, msg) = (text(func), text(msg));
+            log::debug!("SUNDIALS error {err_code} in {func}: {msg}");
+            if let Some(sink) = err_user_data.cast::<ErrSink>().as_mut() {
+                sink.last = Some(if func.is_empty() {
+                    msg
+                } else {
+                    format!("{func}: {msg}")
+                });
+            }
+        }
+    }));
+}
+
+fn validate(
+    n: usize,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    output: &OutputMode,
+) -> Result<(), IdaError> {
+    if y0.len() != n || yp0.len() != n {
+        return Err(invalid(
+            t0,
+            format!(
+                "y0 has length {} and yp0 length {}, but the system has {n} unknowns",
+                y0.len(),
+                yp0.len()
+            ),
+        ));
+    }
+    if !t0.is_finite() {
+        return Err(invalid(t0, "t0 is not finite"));
+    }
+    if let Some(i) = y0.iter().chain(yp0).position(|v| !v.is_finite()) {
+        return Err(invalid(
+            t0,
+            format!("initial value {i} (y0 then yp0) is not finite"),
+        ));
+    }
+    if !settings.id.is_empty() && settings.id.len() != n {
+        return Err(invalid(
+            t0,
+            format!("id has length {}, expected {n}", settings.id.len()),
+        ));
+    }
+    if !(settings.rtol >= 0.0 && settings.rtol.is_finite()) {
+        return Err(invalid(t0, "rtol must be finite and >= 0"));
+    }
+    match &settings.atol_vector {
+        Some(a) if a.len() != n => {
+            return Err(invalid(
+                t0,
+                format!("atol_vector has length {}, expected {n}", a.len()),
+            ));
+        }
+        Some(a) if a.iter().any(|v| !(*v >= 0.0 && v.is_finite())) => {
+            return Err(invalid(t0, "atol_vector entries must be finite and >= 0"));
+        }
+        None if !(settings.atol >= 0.0 && settings.atol.is_finite()) => {
+            return Err(invalid(t0, "atol must be finite and >= 0"));
+        }
+        _ => {}
+    }
+    match output {
+        OutputMode::Times(times) => {
+            let mut prev = t0;
+            for &t in times {
+                if !(t > prev && t.is_finite()) {
+                    return Err(invalid(
+                        t0,
+                        format!(
+                            "output times must be finite, strictly increasing and > t0 = {t0} (got {t} after {prev})"
+                        ),
+                    ));
+                }
+                prev = t;
+            }
+        }
+        OutputMode::EveryStep { t_end } => {
+            if !(*t_end > t0 && t_end.is_finite()) {
+                return Err(invalid(
+                    t0,
+                    format!("t_end = {t_end} must be finite and > t0 = {t0}"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn stats(mem: *mut c_void) -> IdaStats {
+    let get = |f: unsafe extern "C" fn(*mut c_void, *mut c_long) -> c_int| -> u64 {
+        let mut v: c_long = 0;
+        // SAFETY: mem is a valid IDA memory block; f writes one long.
+        let flag = unsafe { f(mem, &mut v) };
+        if flag == 0 {
+            u64::try_from(v).unwrap_or(0)
+        } else {
+            0
+        }
+    };
+    IdaStats {
+        steps: get(sys::IDAGetNumSteps),
+        residual_evals: get(sys::IDAGetNumResEvals) + get(sys::IDAGetNumLinResEvals),
+        jacobian_evals: get(sys::IDAGetNumJacEvals),
+        error_test_failures: get(sys::IDAGetNumErrTestFails),
+        nonlinear_iterations: get(sys::IDAGetNumNonlinSolvIters),
+        nonlinear_convergence_failures: get(sys::IDAGetNumNonlinSolvConvFails),
+        linear_setups: get(sys::IDAGetNumLinSolvSetups),
+    }
+}
+
+/// Integrate from t0; `on_output(t, y, yp)` is called for t0 (with the consistent values after calc_ic if enabled) and every output. Returns statistics.
+#[allow(clippy::type_complexity)]
+pub fn integrate(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    output: &OutputMode,
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]),
+) -> Result<IdaStats, IdaError> {
+    let n = f.len();
+    validate(n, t0, y0, yp0, settings, output)?;
+
+    if n == 0 {
+        // Nothing to integrate: report the requested times.
+        on_output(t0, &[], &[]);
+        match output {
+            OutputMode::Times(times) => times.iter().for_each(|&t| on_output(t, &[], &[])),
+            OutputMode::EveryStep { t_end } => on_output(*t_end, &[], &[]),
+        }
+        return Ok(IdaStats::default());
+    }
+
+    // Jacobian pattern.
+    let pattern = f.jacobian_pattern();
+    let (col_ptr, row_idx) = match (pattern, settings.linear_solver) {
+        (Some((c, r)), _) => {
+            if !linsol::valid_csc(n, &c, &r) {
+                return Err(invalid(
+                    t0,
+                    "jacobian_pattern is not a valid CSC pattern (col_ptr of length n + 1 from 0 to nnz, rows < n strictly increasing per column)",
+                ));
+            }
+            (c, r)
+        }
+        (None, LinearSolver::DenseDifferenceQuotient) => (Vec::new(), Vec::new()),
+        (None, s) => {
+            return Err(invalid(
+                t0,
+                format!(
+                    "linear solver {s:?} needs an analytic Jacobian, but jacobian_pattern() returned None"
+                ),
+            ));
+        }
+    };
+    let nnz = row_idx.len();
+    let n_i = sys::sunindextype::try_from(n).map_err(|_| invalid(t0, "system too large"))?;
+    let nnz_i =
+        sys::sunindextype::try_from(nnz.max(1)).map_err(|_| invalid(t0, "Jacobian too large"))?;
+    let max_steps = c_long::try_from(settings.max_steps).unwrap_or(c_long::MAX);
+
+    let data = CallbackData {
+        f,
+        n,
+        solver: settings.linear_solver,
+        col_ptr_i: col_ptr.iter().map(|&v| v as sys::sunindextype).collect(),
+        row_idx_i: row_idx.iter().map(|&v| v as sys::sunindextype).collect(),
+        values: if settings.linear_solver == LinearSolver::Dense {
+            vec![0.0; nnz]
+        } else {
+            Vec::new()
+        },
+        col_ptr,
+        row_idx,
+        last_error: None,
+    };
+    let mut g = Guard {
+        ctx: ptr::null_mut(),
+        mem: ptr::null_mut(),
+        ls: ptr::null_mut(),
+        mat: ptr::null_mut(),
+        vectors: Vec::new(),
+        data: Box::into_raw(Box::new(data)),
+        sink: Box::into_raw(Box::<ErrSink>::default()),
+    };
+
+    // SAFETY: all SUNDIALS objects are created here and owned by `g`, which
+    // frees them on every return path. Pointers passed to SUNDIALS (`g.data`,
+    // `g.sink`) stay valid until after the context is freed. Slices over the
+    // vectors are only created between SUNDIALS calls.
+    unsafe {
+        if sys::SUNContext_Create(sys::comm_no_mpi(), &mut g.ctx) != 0 || g.ctx.is_null() {
+            g.ctx = ptr::null_mut();
+            return Err(g.setup_failed(t0, "SUNContext_Create failed".into()));
+        }
+        // Silence SUNDIALS: no logger output, errors go to our sink + log.
+        sys::SUNContext_SetLogger(g.ctx, ptr::null_mut());
+        sys::SUNContext_ClearErrHandlers(g.ctx);
+        sys::SUNContext_PushErrHandler(g.ctx, Some(error_handler_cb), g.sink.cast::<c_void>());
+
+        let yy = g.vector(y0).map_err(|m| g.setup_failed(t0, m))?;
+        let yp = g.vector(yp0).map_err(|m| g.setup_failed(t0, m))?;
+
+        g.mem = sys::IDACreate(g.ctx);
+        if g.mem.is_null() {
+            return Err(g.setup_failed(t0, "IDACreate failed".into()));
+        }
+        let mem = g.mem;
+        let flag = sys::IDAInit(mem, Some(residual_cb), t0, yy, yp);
+        g.check(flag, t0, "IDAInit", settings)?;
+        let flag = sys::IDASetUserData(mem, g.data.cast::<c_void>());
+        g.check(flag, t0, "IDASetUserData", settings)?;
+        let flag = match &settings.atol_vector {
+            Some(a) => {
+                let av = g.vector(a).map_err(|m| g.setup_failed(t0, m))?;
+                sys::IDASVtolerances(mem, settings.rtol, av)
+            }
+            None => sys::IDASStolerances(mem, settings.rtol, settings.atol),
+        };
+        g.check(flag, t0, "setting tolerances", settings)?;
+        if let Some(h) = settings.max_step {
+            let flag = sys::IDASetMaxStep(mem, h);
+            g.check(flag, t0, "IDASetMaxStep", settings)?;
+        }
+        if let Some(h) = settings.initial_step {
+            let flag = sys::IDASetInitStep(mem, h);
+            g.check(flag, t0, "IDASetInitStep", settings)?;
+        }
+        let flag = sys::IDASetMaxNumSteps(mem, max_steps);
+        g.check(flag, t0, "IDASetMaxNumSteps", settings)?;
+        if !settings.id.is_empty() || settings.calc_ic {
+            let id = if settings.id.is_empty() {
+                vec![1.0; n]
+            } else {
+                settings.id.clone()
+            };
+            let idv = g.vector(&id).map_err(|m| g.setup_failed(t0, m))?;
+            let flag = sys::IDASetId(mem, idv);
+            g.check(flag, t0, "IDASetId", settings)?;
+        }
+        if !settings.id.is_empty() {
+            let flag = sys::IDASetSuppressAlg(mem, c_int::from(settings.suppress_alg));
+            g.check(flag, t0, "IDASetSuppressAlg", settings)?;
+        }
+
+        // Linear solver.
+        match settings.linear_solver {
+            LinearSolver::Dense | LinearSolver::DenseDifferenceQuotient => {
+                g.mat = sys::SUNDenseMatrix(n_i, n_i, g.ctx);
+                if g.mat.is_null() {
+                    return Err(g.setup_failed(t0, "SUNDenseMatrix failed".into()));
+                }
+                g.ls = sys::SUNLinSol_Dense(yy, g.mat, g.ctx);
+                if g.ls.is_null() {
+                    return Err(g.setup_failed(t0, "SUNLinSol_Dense failed".into()));
+                }
+            }
+            LinearSolver::SparseLu => {
+                g.mat = sys::SUNSparseMatrix(n_i, n_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
+                if g.mat.is_null() {
+                    return Err(g.setup_failed(t0, "SUNSparseMatrix failed".into()));
+                }
+                g.ls = linsol::new_faer_linear_solver(g.ctx);
+                if g.ls.is_null() {
+                    return Err(g.setup_failed(t0, "creating the faer linear solver failed".into()));
+                }
+            }
+        }
+        let flag = sys::IDASetLinearSolver(mem, g.ls, g.mat);
+        g.check(flag, t0, "IDASetLinearSolver", settings)?;
+        if settings.linear_solver != LinearSolver::DenseDifferenceQuotient {
+            let flag = sys::IDASetJacFn(mem, Some(jacobian_cb));
+            g.check(flag, t0, "IDASetJacFn", settings)?;
+        }
+
+        let t_last = match output {
+            OutputMode::Times(times) => times.last().copied(),
+            OutputMode::EveryStep { t_end } => Some(*t_end),
+        };
+        if let Some(te) = t_last {
+            let flag = sys::IDASetStopTime(mem, te);
+            g.check(flag, t0, "IDASetStopTime", settings)?;
+        }
+
+        if settings.calc_ic {
+            let tout1 = match output {
+                OutputMode::Times(times) => times.first().copied(),
+                OutputMode::EveryStep { t_end } => Some(*t_end),
+            }
+            .unwrap_or(t0 + 1e-3 * t0.abs().max(1.0));
+            let flag = sys::IDACalcIC(mem, sys::IDA_YA_YDP_INIT, tout1);
+            g.check(flag, t0, "consistent initial values (IDACalcIC)", settings)?;
+            let flag = sys::IDAGetConsistentIC(mem, yy, yp);
+            g.check(flag, t0, "IDAGetConsistentIC", settings)?;
+        }
+        on_output(t0, vec_ref(yy, n), vec_ref(yp, n));
+
+        let mut t = t0;
+        match output {
+            OutputMode::Times(times) => {
+                for &tout in times {
+                    let flag = sys::IDASolve(mem, tout, &mut t, yy, yp, sys::IDA_NORMAL);
+                    if flag < 0 {
+                        return Err(g.error(t, flag, "", settings));
+                    }
+                    on_output(t, vec_ref(yy, n), vec_ref(yp, n));
+                }
+            }
+            OutputMode::EveryStep { t_end } => loop {
+                let flag = sys::IDASolve(mem, *t_end, &mut t, yy, yp, sys::IDA_ONE_STEP);
+                if flag < 0 {
+                    return Err(g.error(t, flag, "", settings));
+                }
+                if flag == sys::IDA_TSTOP_RETURN || t >= *t_end {
+                    on_output(*t_end, vec_ref(yy, n), vec_ref(yp, n));
+                    break;
+                }
+                on_output(t, vec_ref(yy, n), vec_ref(yp, n));
+            },
+        }
+        let st = stats(mem);
+        log::debug!("IDA finished at t = {t}: {st:?}");
+        Ok(st)
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::needless_range_loop)]
+mod tests {
+    use super::*;
+
+    /// Robertson's chemical kinetics as a DAE.
+    struct Robertson {
+        analytic: bool,
+    }
+
+    impl DaeFunctions for Robertson {
+        fn len(&self) -> usize {
+            3
+        }
+        fn residual(
+            &mut self,
+            _t: f64,
+            y: &[f64],
+            yp: &[f64],
+            r: &mut [f64],
+        ) -> Result<(), EvalError> {
+            r[0] = -0.04 * y[0] + 1e4 * y[1] * y[2] - yp[0];
+            r[1] = 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1] - yp[1];
+            r[2] = y[0] + y[1] + y[2] - 1.0;
+            Ok(())
+        }
+        fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+            self.analytic
+                .then(|| (vec![0, 3, 6, 9], vec![0, 1, 2, 0, 1, 2, 0, 1, 2]))
+        }
+        fn jacobian(
+            &mut self,
+            _t: f64,
+            y: &[f64],
+            _yp: &[f64],
+            cj: f64,
+            v: &mut [f64],
+        ) -> Result<(), EvalError> {
+            // column y1
+            v[0] = -0.04 - cj;
+            v[1] = 0.04;
+            v[2] = 1.0;
+            // column y2
+            v[3] = 1e4 * y[2];
+            v[4] = -1e4 * y[2] - 6e7 * y[1] - cj;
+            v[5] = 1.0;
+            // column y3
+            v[6] = 1e4 * y[1];
+            v[7] = -1e4 * y[1];
+            v[8] = 1.0;
+            Ok(())
+        }
+    }
+
+    fn robertson(solver: LinearSolver) -> (Vec<(f64, Vec<f64>)>, IdaStats) {
+        let mut f = Robertson {
+            analytic: solver != LinearSolver::DenseDifferenceQuotient,
+        };
+        let settings = IdaSettings {
+            rtol: 1e-8,
+            atol_vector: Some(vec![1e-12, 1e-16, 1e-12]),
+            id: vec![1.0, 1.0, 0.0],
+            linear_solver: solver,
+            ..IdaSettings::default()
+        };
+        let times: Vec<f64> = (0..7).map(|k| 0.4 * 10f64.powi(k)).collect();
+        let mut out = Vec::new();
+        let stats = integrate(
+            &mut f,
+            0.0,
+            &[1.0, 0.0, 0.0],
+            &[-0.04, 0.04, 0.0],
+            &settings,
+            &OutputMode::Times(times),
+            &mut |t, y, _| out.push((t, y.to_vec())),
+        )
+        .unwrap();
+        (out, stats)
+    }
+
+    #[test]
+    fn robertson_all_solvers() {
+        let reference = [9.8517e-01, 3.3864e-05, 1.4794e-02];
+        let results: Vec<_> = [
+            LinearSolver::Dense,
+            LinearSolver::DenseDifferenceQuotient,
+            LinearSolver::SparseLu,
+        ]
+        .into_iter()
+        .map(robertson)
+        .collect();
+        for (out, stats) in &results {
+            assert_eq!(out.len(), 8);
+            assert_eq!(out[0].0, 0.0);
+            assert_eq!(out[1].0, 0.4);
+            assert_eq!(out[7].0, 4e5);
+            for i in 0..3 {
+                let rel = (out[1].1[i] - reference[i]).abs() / reference[i];
+                assert!(
+                    rel < 1e-4,
+                    "component {i}: {} vs {}",
+                    out[1].1[i],
+                    reference[i]
+                );
+            }
+            let y = &out[7].1;
+            assert!((y[0] + y[1] + y[2] - 1.0).abs() < 1e-10);
+            assert!(stats.steps > 0 && stats.residual_evals > 0 && stats.jacobian_evals > 0);
+            assert!(stats.linear_setups > 0 && stats.nonlinear_iterations > 0);
+        }
+        let (base, _) = &results[0];
+        for (other, _) in &results[1..] {
+            for (a, b) in base.iter().zip(other) {
+                for i in [0, 2] {
+                    assert!(
+                        (a.1[i] - b.1[i]).abs() < 1e-6,
+                        "t = {}: {:?} vs {:?}",
+                        a.0,
+                        a.1,
+                        b.1
+                    );
+                }
+                assert!(
+                    (a.1[1] - b.1[1]).abs() < 1e-6 * a.1[1].abs().max(1e-4),
+                    "t = {}: {:?} vs {:?}",
+                    a.0,
+                    a.1,
+                    b.1
+                );
+            }
+        }
+    }
+
+    /// x' = v, v' = -x, 0 = z - x; optionally failing for t > fail_after.
+    struct Oscillator {
+        fail_after: Option<f64>,
+        panic_after: Option<f64>,
+    }
+
+    impl DaeFunctions for Oscillator {
+        fn len(&self) -> usize {
+            3
+        }
+        fn residual(
+            &mut self,
+            t: f64,
+            y: &[f64],
+            yp: &[f64],
+            r: &mut [f64],
+        ) -> Result<(), EvalError> {
+            if self.fail_after.is_some_and(|tf| t > tf) {
+                return Err(EvalError {
+                    message: "sqrt of negative argument in spring".into(),
+                    recoverable: false,
+                });
+            }
+            if self.panic_after.is_some_and(|tf| t > tf) {
+                panic!("model bug");
+            }
+            r[0] = yp[0] - y[1];
+            r[1] = yp[1] + y[0];
+            r[2] = y[2] - y[0];
+            Ok(())
+        }
+        fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+            Some((vec![0, 3, 5, 6], vec![0, 1, 2, 0, 1, 2]))
+        }
+        fn jacobian(
+            &mut self,
+            _t: f64,
+            _y: &[f64],
+            _yp: &[f64],
+            cj: f64,
+            v: &mut [f64],
+        ) -> Result<(), EvalError> {
+            v.copy_from_slice(&[cj, 1.0, -1.0, -1.0, cj, 1.0]);
+            Ok(())
+        }
+    }
+
+    fn osc_settings(solver: LinearSolver) -> IdaSettings {
+        IdaSettings {
+            rtol: 1e-10,
+            atol: 1e-12,
+            id: vec![1.0, 1.0, 0.0],
+            linear_solver: solver,
+            ..IdaSettings::default()
+        }
+    }
+
+    #[test]
+    fn oscillator_times_and_every_step() {
+        for solver in [
+            LinearSolver::Dense,
+            LinearSolver::DenseDifferenceQuotient,
+            LinearSolver::SparseLu,
+        ] {
+            let mut f = Oscillator {
+                fail_after: None,
+                panic_after: None,
+            };
+            let times: Vec<f64> = (1..=20).map(|k| 0.5 * k as f64).collect();
+            let mut out = Vec::new();
+            integrate(
+                &mut f,
+                0.0,
+                &[1.0, 0.0, 1.0],
+                &[0.0, -1.0, 0.0],
+                &osc_settings(solver),
+                &OutputMode::Times(times.clone()),
+                &mut |t, y, _| out.push((t, y.to_vec())),
+            )
+            .unwrap();
+            assert_eq!(out.len(), times.len() + 1);
+            for (k, (t, y)) in out.iter().enumerate() {
+                if k > 0 {
+                    assert_eq!(*t, times[k - 1]);
+                }
+                assert!((y[0] - t.cos()).abs() < 1e-6, "{solver:?} t = {t}: {y:?}");
+                assert!((y[1] + t.sin()).abs() < 1e-6, "{solver:?} t = {t}: {y:?}");
+                assert!((y[2] - t.cos()).abs() < 1e-6, "{solver:?} t = {t}: {y:?}");
+            }
+
+            let mut ts = Vec::new();
+            let stats = integrate(
+                &mut f,
+                0.0,
+                &[1.0, 0.0, 1.0],
+                &[0.0, -1.0, 0.0],
+                &osc_settings(solver),
+                &OutputMode::EveryStep { t_end: 3.0 },
+                &mut |t, y, _| {
+                    assert!((y[0] - t.cos()).abs() < 1e-6);
+                    ts.push(t)
+                },
+            )
+            .unwrap();
+            assert!(ts.len() > 10);
+            assert_eq!(ts[0], 0.0);
+            assert_eq!(*ts.last().unwrap(), 3.0);
+            assert!(ts.windows(2).all(|w| w[1] > w[0]), "{ts:?}");
+            let len = ts.len() as u64;
+            assert!(
+                len <= stats.steps + 1 && len >= stats.steps,
+                "{len} outputs, {} steps",
+                stats.steps
+            );
+        }
+    }
+
+    #[test]
+    fn fatal_eval_error_is_reported() {
+        for solver in [LinearSolver::Dense, LinearSolver::SparseLu] {
+            let mut f = Oscillator {
+                fail_after: Some(1.0),
+                panic_after: None,
+            };
+            let settings = IdaSettings {
+                max_step: Some(0.01),
+                ..osc_settings(solver)
+            };
+            let mut last_t = 0.0;
+            let err = integrate(
+                &mut f,
+                0.0,
+                &[1.0, 0.0, 1.0],
+                &[0.0, -1.0, 0.0],
+                &settings,
+                &OutputMode::Times(vec![0.5, 2.0]),
+                &mut |t, _, _| last_t = t,
+            )
+            .unwrap_err();
+            assert_eq!(last_t, 0.5);
+            assert_eq!(err.flag, "IDA_RES_FAIL");
+            assert!(err.t <= 1.0 && err.t > 0.98, "{err}");
+            assert!(
+                err.message.contains("sqrt of negative argument in spring"),
+                "{err}"
+            );
+            assert!(err.message.contains("residual function failed"), "{err}");
+        }
+    }
+
+    #[test]
+    fn panic_in_callback_is_caught() {
+        let mut f = Oscillator {
+            fail_after: None,
+            panic_after: Some(0.5),
+        };
+        let err = integrate(
+            &mut f,
+            0.0,
+            &[1.0, 0.0, 1.0],
+            &[0.0, -1.0, 0.0],
+            &osc_settings(LinearSolver::SparseLu),
+            &OutputMode::Times(vec![1.0]),
+            &mut |_, _, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(err.flag, "IDA_RES_FAIL");
+        assert!(err.message.contains("model bug"), "{err}");
+    }
+
+    #[test]
+    fn too_much_work_and_invalid_input() {
+        let mut f = Oscillator {
+            fail_after: None,
+            panic_after: None,
+        };
+        let settings = IdaSettings {
+            max_steps: 5,
+            ..osc_settings(LinearSolver::SparseLu)
+        };
+        let err = integrate(
+            &mut f,
+            0.0,
+            &[1.0, 0.0, 1.0],
+            &[0.0, -1.0, 0.0],
+            &settings,
+            &OutputMode::Times(vec![100.0]),
+            &mut |_, _, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(err.flag, "IDA_TOO_MUCH_WORK");
+        assert!(err.message.contains("too many steps"), "{err}");
+        assert!(err.t > 0.0 && err.t < 100.0);
+
+        let err = integrate(
+            &mut f,
+            0.0,
+            &[1.0, 0.0, 1.0],
+            &[0.0, -1.0, 0.0],
+            &settings,
+            &OutputMode::Times(vec![2.0, 1.0]),
+            &mut |_, _, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(err.flag, "INVALID_INPUT");
+
+        let mut r = Robertson { analytic: false };
+        let err = integrate(
+            &mut r,
+            0.0,
+            &[1.0, 0.0, 0.0],
+            &[-0.04, 0.04, 0.0],
+            &IdaSettings::default(),
+            &OutputMode::Times(vec![1.0]),
+            &mut |_, _, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(err.flag, "INVALID_INPUT");
+        assert!(err.message.contains("jacobian_pattern"));
+    }
+
+    #[test]
+    fn calc_ic_fixes_inconsistent_algebraic_value() {
+        for solver in [LinearSolver::Dense, LinearSolver::SparseLu] {
+            let mut f = Oscillator {
+                fail_after: None,
+                panic_after: None,
+            };
+            let settings = IdaSettings {
+                calc_ic: true,
+                ..osc_settings(solver)
+            };
+            let mut out = Vec::new();
+            integrate(
+                &mut f,
+                0.0,
+                &[1.0, 0.0, 5.0],
+                &[0.0, 0.0, 0.0],
+                &settings,
+                &OutputMode::Times(vec![1.0, 2.0]),
+                &mut |t, y, yp| out.push((t, y.to_vec(), yp.to_vec())),
+            )
+            .unwrap();
+            let (t, y, yp) = &out[0];
+            assert_eq!(*t, 0.0);
+            assert!((y[2] - 1.0).abs() < 1e-8, "{y:?}");
+            assert_eq!(y[0], 1.0);
+            assert!((yp[1] + 1.0).abs() < 1e-8, "{yp:?}");
+            let (t, y, _) = &out[2];
+            assert!((y[0] - t.cos()).abs() < 1e-6 && (y[2] - t.cos()).abs() < 1e-6);
+        }
+    }
+
+    /// Chain of `m` unit masses with unit springs and fixed ends,
+    /// y = [x0, v0, x1, v1, ...]: x_i' = v_i, v_i' = x_{i-1} - 2 x_i + x_{i+1}.
+    struct Chain {
+        m: usize,
+    }
+
+    impl DaeFunctions for Chain {
+        fn len(&self) -> usize {
+            2 * self.m
+        }
+        fn residual(
+            &mut self,
+            _t: f64,
+            y: &[f64],
+            yp: &[f64],
+            r: &mut [f64],
+        ) -> Result<(), EvalError> {
+            let m = self.m;
+            for i in 0..m {
+                let left = if i > 0 { y[2 * (i - 1)] } else { 0.0 };
+                let right = if i + 1 < m { y[2 * (i + 1)] } else { 0.0 };
+                r[2 * i] = yp[2 * i] - y[2 * i + 1];
+                r[2 * i + 1] = yp[2 * i + 1] - (left - 2.0 * y[2 * i] + right);
+            }
+            Ok(())
+        }
+        fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+            let m = self.m;
+            let mut cp = vec![0];
+            let mut ri = Vec::new();
+            for i in 0..m {
+                // column x_i: rows v_{i-1} eq, x_i eq, v_i eq, v_{i+1} eq
+                if i > 0 {
+                    ri.push(2 * i - 1);
+                }
+                ri.push(2 * i);
+                ri.push(2 * i + 1);
+                if i + 1 < m {
+                    ri.push(2 * i + 3);
+                }
+                cp.push(ri.len());
+                // column v_i: rows x_i eq, v_i eq
+                ri.push(2 * i);
+                ri.push(2 * i + 1);
+                cp.push(ri.len());
+            }
+            Some((cp, ri))
+        }
+        fn jacobian(
+            &mut self,
+            _t: f64,
+            _y: &[f64],
+            _yp: &[f64],
+            cj: f64,
+            v: &mut [f64],
+        ) -> Result<(), EvalError> {
+            let m = self.m;
+            let mut k = 0;
+            for i in 0..m {
+                let mut push = |x: f64| {
+                    v[k] = x;
+                    k += 1;
+                };
+                if i > 0 {
+                    push(-1.0);
+                }
+                push(cj);
+                push(2.0);
+                if i + 1 < m {
+                    push(-1.0);
+                }
+                push(-1.0);
+                push(cj);
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn sparse_chain_of_2000_unknowns() {
+        let m = 1000;
+        let mode = 500.0;
+        let omega = 2.0 * (mode * std::f64::consts::PI / (2.0 * (m as f64 + 1.0))).sin();
+        let shape: Vec<f64> = (0..m)
+            .map(|i| (mode * std::f64::consts::PI * (i as f64 + 1.0) / (m as f64 + 1.0)).sin())
+            .collect();
+        let mut y0 = vec![0.0; 2 * m];
+        let mut yp0 = vec![0.0; 2 * m];
+        for i in 0..m {
+            y0[2 * i] = shape[i];
+            yp0[2 * i + 1] = -omega * omega * shape[i];
+        }
+        let mut f = Chain { m };
+        let settings = IdaSettings {
+            rtol: 1e-8,
+            atol: 1e-10,
+            ..IdaSettings::default()
+        };
+        let mut max_err: f64 = 0.0;
+        let stats = integrate(
+            &mut f,
+            0.0,
+            &y0,
+            &yp0,
+            &settings,
+            &OutputMode::Times(vec![2.0, 5.0]),
+            &mut |t, y, _| {
+                for i in 0..m {
+                    max_err = max_err.max((y[2 * i] - shape[i] * (omega * t).cos()).abs());
+                }
+            },
+        )
+        .unwrap();
+        assert!(max_err < 1e-4, "max error {max_err}");
+        assert!(stats.steps > 0);
+    }
+}

@@ -1,0 +1,2 @@
+pub mod ida;
+mod linsol;
