@@ -9,14 +9,18 @@
 //! * [`dm`]: coarse Dulmage–Mendelsohn decomposition for diagnostics.
 //! * [`blt`]: block lower triangular ordering (iterative Tarjan SCC).
 //! * [`tearing`]: greedy tearing of one algebraic block.
+//! * [`pantelides`]: index reduction (which equations to differentiate how often).
+//! * [`dummy_derivatives`]: static state selection honouring state priorities.
 
 pub mod blt;
 pub mod dm;
+pub mod dummy_derivatives;
 pub mod matching;
+pub mod pantelides;
 pub mod tearing;
 
 /// Bipartite incidence: equations (rows) x variables (columns).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct BipartiteGraph {
     /// Number of variables (columns); every variable index is `< n_vars`.
     pub n_vars: usize,

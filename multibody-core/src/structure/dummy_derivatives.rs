@@ -1,0 +1,243 @@
+//! Static state selection by dummy derivatives (Mattsson and Soederlind, 1993).
+//!
+//! After index reduction every differentiated equation removes one degree of freedom
+//! from the derivative chains it touches. Level by level, from the highest
+//! differentiated equations down, as many derivative slots as there are equations are
+//! chosen (a structurally nonsingular selection) to become *dummy derivatives*: plain
+//! algebraic unknowns. A slot whose derivative slot is not a dummy is a state.
+//!
+//! The choice honours preferences: candidates are tried in order of the state priority
+//! of the slot that would lose its state status (lowest first), then declaration rank
+//! (latest first), and a candidate is kept when the selection stays matchable: the greedy
+//! algorithm on the transversal matroid, so the states kept have the best priorities
+//! that any valid selection allows.
+
+use super::pantelides::IndexReduction;
+
+/// Ranking of one slot as a state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StateRank {
+    /// Preference for staying a state (higher stays); [`ALWAYS`] and above must stay.
+    pub priority: f64,
+    /// Declaration order of the variable behind the slot (later ones are dropped first).
+    pub declaration: usize,
+}
+
+/// Priority from which a state is a hard requirement (Modelica's `StateSelect.always`).
+pub const ALWAYS: f64 = 1000.0;
+
+/// One level of the selection (for reports and tests).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SelectionLevel {
+    /// Equations of this level.
+    pub equations: Vec<usize>,
+    /// Derivative slots that could be made dummies.
+    pub candidates: Vec<usize>,
+    /// The slots made dummies, one per equation.
+    pub dummies: Vec<usize>,
+}
+
+/// The result of state selection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StateSelection {
+    /// Per slot: whether it is a dummy derivative (an algebraic unknown).
+    pub dummy: Vec<bool>,
+    /// Slots that are states (their derivative slot exists and is not a dummy),
+    /// ascending.
+    pub states: Vec<usize>,
+    /// The levels, highest derivatives first.
+    pub levels: Vec<SelectionLevel>,
+}
+
+/// Why no valid selection exists.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SelectionError {
+    /// A level's equations cannot be matched to its candidates.
+    Singular {
+        /// The level's equations.
+        equations: Vec<usize>,
+        /// Its candidates.
+        candidates: Vec<usize>,
+    },
+    /// Slots marked `always` that must lose their state status.
+    AlwaysViolated(Vec<usize>),
+}
+
+/// Selects dummy derivatives for an index reduction of a system whose first
+/// `n_original` equations are the original ones. `rank[v]` ranks slot `v` as a state.
+pub fn dummy_derivatives(
+    red: &IndexReduction,
+    n_original: usize,
+    rank: &[StateRank],
+) -> Result<StateSelection, SelectionError> {
+    let n_slots = red.var_diff.len();
+    let anti = red.antiderivative_var();
+    let counts = red.differentiation_counts(n_original);
+    let max_level = counts.iter().copied().max().unwrap_or(0);
+    let var_eqs_of = |e: usize| &red.graph.eq_vars[e];
+    let mut dummy = vec![false; n_slots];
+    let mut levels = Vec::new();
+    let mut previous: Vec<usize> = Vec::new();
+    let mut violated = Vec::new();
+
+    for level in 1..=max_level {
+        // Equations differentiated at least `level` times, taken `counts - level + 1`
+        // times differentiated.
+        let mut equations = Vec::new();
+        for (e, &m) in counts.iter().enumerate() {
+            if m >= level {
+                let mut cur = e;
+                for _ in 0..(m - level + 1) {
+                    cur = red.eq_diff[cur].expect("counted derivative");
+                }
+                equations.push(cur);
+            }
+        }
+        let mut candidates: Vec<usize> = if level == 1 {
+            let mut c: Vec<usize> = equations
+                .iter()
+                .flat_map(|&e| var_eqs_of(e).iter().copied())
+                .filter(|&v| red.var_diff[v].is_none() && anti[v].is_some())
+                .collect();
+            c.sort_unstable();
+            c.dedup();
+            c
+        } else {
+            let mut c: Vec<usize> = previous
+                .iter()
+                .filter_map(|&v| anti[v])
+                .filter(|&a| anti[a].is_some())
+                .collect();
+            c.sort_unstable();
+            c.dedup();
+            c
+        };
+        // Greedy on the transversal matroid: lowest priority of the antiderivative
+        // first, then the lowest priority found further down its chain (so a preferred
+        // position keeps its velocity too), then the latest declared.
+        let key = |v: usize| {
+            let a = anti[v].expect("candidates are derivatives");
+            let mut chain = rank[a].priority;
+            let mut b = a;
+            while let Some(c) = anti[b] {
+                chain = chain.max(rank[c].priority);
+                b = c;
+            }
+            (rank[a].priority, chain, rank[a].declaration)
+        };
+        candidates.sort_by(|&x, &y| {
+            let (kx, ky) = (key(x), key(y));
+            kx.0.total_cmp(&ky.0)
+                .then(kx.1.total_cmp(&ky.1))
+                .then(ky.2.cmp(&kx.2))
+                .then(y.cmp(&x))
+        });
+        let selected = select(&equations, &candidates, |e| var_eqs_of(e));
+        if selected.len() < equations.len() {
+            return Err(SelectionError::Singular {
+                equations,
+                candidates,
+            });
+        }
+        for &v in &selected {
+            dummy[v] = true;
+            let a = anti[v].expect("candidate");
+            if rank[a].priority >= ALWAYS {
+                violated.push(a);
+            }
+        }
+        let mut dummies = selected.clone();
+        dummies.sort_unstable();
+        levels.push(SelectionLevel {
+            equations,
+            candidates,
+            dummies,
+        });
+        previous = selected;
+    }
+    if !violated.is_empty() {
+        violated.sort_unstable();
+        violated.dedup();
+        return Err(SelectionError::AlwaysViolated(violated));
+    }
+    let states = (0..n_slots)
+        .filter(|&v| red.var_diff[v].is_some_and(|d| !dummy[d]))
+        .collect();
+    Ok(StateSelection {
+        dummy,
+        states,
+        levels,
+    })
+}
+
+/// Greedy matroid selection: each candidate in order is kept when an augmenting path
+/// from it reaches an unmatched equation of `equations`. Returns the kept candidates.
+fn select<'a>(
+    equations: &[usize],
+    candidates: &[usize],
+    vars_of: impl Fn(usize) -> &'a Vec<usize>,
+) -> Vec<usize> {
+    use std::collections::{HashMap, VecDeque};
+    let cand_index: HashMap<usize, usize> = candidates
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v, i))
+        .collect();
+    // Candidate -> local equations containing it.
+    let mut cand_eqs: Vec<Vec<usize>> = vec![Vec::new(); candidates.len()];
+    for (le, &e) in equations.iter().enumerate() {
+        for v in vars_of(e) {
+            if let Some(&c) = cand_index.get(v) {
+                cand_eqs[c].push(le);
+            }
+        }
+    }
+    let mut eq_match: Vec<Option<usize>> = vec![None; equations.len()];
+    let mut cand_match: Vec<Option<usize>> = vec![None; candidates.len()];
+    let mut parent: Vec<usize> = vec![0; equations.len()];
+    let mut visited: Vec<bool> = vec![false; equations.len()];
+    let mut kept = Vec::new();
+    let mut queue = VecDeque::new();
+    for c in 0..candidates.len() {
+        if kept.len() == equations.len() {
+            break;
+        }
+        visited.fill(false);
+        queue.clear();
+        queue.push_back(c);
+        let mut found = None;
+        'bfs: while let Some(x) = queue.pop_front() {
+            for &le in &cand_eqs[x] {
+                if visited[le] {
+                    continue;
+                }
+                visited[le] = true;
+                parent[le] = x;
+                match eq_match[le] {
+                    None => {
+                        found = Some(le);
+                        break 'bfs;
+                    }
+                    Some(y) => queue.push_back(y),
+                }
+            }
+        }
+        let Some(mut le) = found else { continue };
+        loop {
+            let x = parent[le];
+            let old = cand_match[x];
+            cand_match[x] = Some(le);
+            eq_match[le] = Some(x);
+            if x == c {
+                break;
+            }
+            le = old.expect("an inner candidate of the path is matched");
+        }
+        kept.push(candidates[c]);
+    }
+    kept
+}
+
+#[cfg(test)]
+#[path = "dummy_derivatives_tests.rs"]
+mod tests;

@@ -1,0 +1,94 @@
+//! Golden tests of dummy-derivative state selection.
+
+use super::*;
+use crate::structure::BipartiteGraph;
+use crate::structure::pantelides::pantelides;
+
+fn ranks(n: usize, decl: &[usize], prio: &[(usize, f64)]) -> Vec<StateRank> {
+    let mut r: Vec<StateRank> = (0..n)
+        .map(|v| StateRank {
+            priority: 0.0,
+            declaration: decl.get(v).copied().unwrap_or(v),
+        })
+        .collect();
+    for &(v, p) in prio {
+        r[v].priority = p;
+    }
+    r
+}
+
+#[test]
+fn cartesian_pendulum_keeps_x_and_vx_without_priorities() {
+    let (g, vd) = crate::structure::pantelides::tests::pendulum();
+    let red = pantelides(&g, &vd).unwrap();
+    // Declaration order x, y, vx, vy, lambda; der(vx), der(vy) rank with vx, vy.
+    let rank = ranks(7, &[0, 1, 2, 3, 4, 2, 3], &[]);
+    let sel = dummy_derivatives(&red, 3, &rank).unwrap();
+    // Two levels: the twice-differentiated constraint picks der(vy), once picks vy.
+    assert_eq!(sel.levels.len(), 2);
+    assert_eq!(sel.levels[0].equations, vec![4]);
+    assert_eq!(sel.levels[0].dummies, vec![6]);
+    assert_eq!(sel.levels[1].equations, vec![3]);
+    assert_eq!(sel.levels[1].dummies, vec![3]);
+    assert_eq!(sel.states, vec![0, 2]);
+}
+
+#[test]
+fn cartesian_pendulum_honours_a_priority_on_y() {
+    let (g, vd) = crate::structure::pantelides::tests::pendulum();
+    let red = pantelides(&g, &vd).unwrap();
+    let rank = ranks(7, &[0, 1, 2, 3, 4, 2, 3], &[(1, 10.0)]);
+    let sel = dummy_derivatives(&red, 3, &rank).unwrap();
+    assert_eq!(sel.states, vec![1, 3]);
+    assert!(sel.dummy[5] && sel.dummy[2]);
+}
+
+#[test]
+fn always_that_cannot_be_honoured_is_an_error() {
+    let (g, vd) = crate::structure::pantelides::tests::pendulum();
+    let red = pantelides(&g, &vd).unwrap();
+    // Both x and y demanded as states: only one can be.
+    let rank = ranks(
+        7,
+        &[0, 1, 2, 3, 4, 2, 3],
+        &[(0, ALWAYS), (1, ALWAYS), (2, ALWAYS), (3, ALWAYS)],
+    );
+    let err = dummy_derivatives(&red, 3, &rank).unwrap_err();
+    assert!(
+        matches!(err, SelectionError::AlwaysViolated(ref v) if !v.is_empty()),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn index_one_system_has_all_candidates_as_states() {
+    let mut g = BipartiteGraph::new(3);
+    g.add_equation(vec![0, 1, 2]);
+    g.add_equation(vec![1]);
+    let red = pantelides(&g, &[Some(2), None, None]).unwrap();
+    let sel = dummy_derivatives(&red, 2, &ranks(3, &[], &[])).unwrap();
+    assert!(sel.levels.is_empty());
+    assert_eq!(sel.states, vec![0]);
+}
+
+#[test]
+fn double_pendulum_keeps_four_states() {
+    let mut g = BipartiteGraph::new(14);
+    let var_diff: Vec<Option<usize>> = (0..8)
+        .map(|i| Some(i + 4))
+        .chain((8..14).map(|_| None))
+        .collect();
+    g.add_equation(vec![8, 12, 13, 0, 2]);
+    g.add_equation(vec![9, 12, 13, 1, 3]);
+    g.add_equation(vec![10, 13, 0, 2]);
+    g.add_equation(vec![11, 13, 1, 3]);
+    g.add_equation(vec![0, 1]);
+    g.add_equation(vec![0, 1, 2, 3]);
+    let red = pantelides(&g, &var_diff).unwrap();
+    let decl: Vec<usize> = (0..14)
+        .map(|v| if v >= 8 && v < 12 { v - 4 } else { v })
+        .collect();
+    let sel = dummy_derivatives(&red, 6, &ranks(14, &decl, &[])).unwrap();
+    // Positions x1, x2 and velocities vx1, vx2 stay (y's are declared later).
+    assert_eq!(sel.states, vec![0, 2, 4, 6]);
+}

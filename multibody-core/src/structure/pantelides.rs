@@ -1,0 +1,316 @@
+//! Pantelides' index reduction on the integer equation-variable graph.
+//!
+//! Variables are numbered slots; `var_diff[v] = Some(w)` says slot `w` is the time
+//! derivative of slot `v`. Only *highest-derivative* slots (those without a derivative
+//! slot) take part in the matching. When an equation cannot be matched, the equations and
+//! variables visited by the failed augmenting search are differentiated: new derivative
+//! slots and new equations are appended, the derivative maps record which is which, and
+//! the search continues with the derivative of the equation. The symbolic step that
+//! rebuilds the differentiated equations lives elsewhere; here a differentiated equation
+//! contains every variable of its antiderivative and each one's derivative, which is
+//! exactly what matters for the matching (lower-order slots never take part in it).
+
+use super::BipartiteGraph;
+use super::matching::{Matching, maximum_matching};
+
+/// The result of index reduction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IndexReduction {
+    /// The augmented graph: the original equations first, then the differentiated ones.
+    pub graph: BipartiteGraph,
+    /// For each slot, the slot of its time derivative (grown by the new slots).
+    pub var_diff: Vec<Option<usize>>,
+    /// For each equation, the equation that is its time derivative, if it was
+    /// differentiated.
+    pub eq_diff: Vec<Option<usize>>,
+    /// A matching of every highest-order equation (one not differentiated) to a
+    /// highest-derivative slot (one without a derivative slot); lower-order equations and
+    /// slots are unmatched.
+    pub matching: Matching,
+}
+
+impl IndexReduction {
+    /// The equation of which `e` is the time derivative, if `e` was made by
+    /// differentiation.
+    pub fn antiderivative_eq(&self) -> Vec<Option<usize>> {
+        invert(&self.eq_diff, self.eq_diff.len())
+    }
+
+    /// For each slot, the slot of which it is the time derivative.
+    pub fn antiderivative_var(&self) -> Vec<Option<usize>> {
+        invert(&self.var_diff, self.var_diff.len())
+    }
+
+    /// How many times each equation of the original system was differentiated.
+    pub fn differentiation_counts(&self, n_original: usize) -> Vec<usize> {
+        (0..n_original)
+            .map(|e| {
+                let mut k = 0;
+                let mut cur = e;
+                while let Some(d) = self.eq_diff[cur] {
+                    k += 1;
+                    cur = d;
+                }
+                k
+            })
+            .collect()
+    }
+}
+
+/// Inverts a derivative map.
+pub fn invert(map: &[Option<usize>], n: usize) -> Vec<Option<usize>> {
+    let mut inv = vec![None; n];
+    for (i, d) in map.iter().enumerate() {
+        if let Some(d) = *d {
+            inv[d] = Some(i);
+        }
+    }
+    inv
+}
+
+/// Why index reduction failed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StructurallySingular {
+    /// Equations (original numbering) taking part in the singular subsystem.
+    pub equations: Vec<usize>,
+    /// Slots taking part in it.
+    pub variables: Vec<usize>,
+}
+
+/// The graph with every slot replaced by the base slot of its derivative chain: a system
+/// is solvable by differentiation exactly when this graph has a perfect matching
+/// (differentiation never creates a new base variable).
+pub fn chain_graph(
+    graph: &BipartiteGraph,
+    var_diff: &[Option<usize>],
+) -> (BipartiteGraph, Vec<usize>) {
+    let n = graph.n_vars;
+    let anti = invert(var_diff, n.max(var_diff.len()));
+    let mut base: Vec<usize> = (0..n).collect();
+    for v in 0..n {
+        let mut b = v;
+        while let Some(a) = anti.get(b).copied().flatten() {
+            b = a;
+        }
+        base[v] = b;
+    }
+    let mut g = BipartiteGraph::new(n);
+    for vars in &graph.eq_vars {
+        g.add_equation(vars.iter().map(|&v| base[v]).collect());
+    }
+    (g, base)
+}
+
+struct Search<'a> {
+    adj: &'a [Vec<usize>],
+    var_diff: &'a [Option<usize>],
+    var_eq: &'a mut Vec<Option<usize>>,
+    eq_var: &'a mut Vec<Option<usize>>,
+    colored_eqs: Vec<usize>,
+    colored_vars: Vec<usize>,
+    eq_mark: Vec<bool>,
+    var_mark: Vec<bool>,
+}
+
+impl Search<'_> {
+    /// Iterative augmenting-path search from equation `root` over highest-derivative
+    /// slots; on failure, the visited equations and slots are left colored.
+    fn augment(&mut self, root: usize) -> bool {
+        // Frames: (equation, next position, searching for a free slot first?).
+        let mut stack: Vec<(usize, usize, bool)> = vec![(root, 0, true)];
+        // `via[k]` is the slot through which frame k + 1 was entered.
+        let mut via: Vec<usize> = Vec::new();
+        self.mark_eq(root);
+        while let Some(&(e, pos, first)) = stack.last() {
+            let vars = &self.adj[e];
+            if first {
+                let free = vars
+                    .iter()
+                    .copied()
+                    .find(|&v| self.var_diff[v].is_none() && self.var_eq[v].is_none());
+                if let Some(v) = free {
+                    // Flip the alternating path root -> ... -> e -> v.
+                    self.var_eq[v] = Some(e);
+                    self.eq_var[e] = Some(v);
+                    for (k, &pv) in via.iter().enumerate() {
+                        let pe = stack[k].0;
+                        self.var_eq[pv] = Some(pe);
+                        self.eq_var[pe] = Some(pv);
+                    }
+                    return true;
+                }
+                stack.last_mut().expect("non-empty").2 = false;
+                continue;
+            }
+            let mut p = pos;
+            let mut next = None;
+            while p < vars.len() {
+                let v = vars[p];
+                p += 1;
+                if self.var_diff[v].is_none() && !self.var_mark[v] {
+                    self.var_mark[v] = true;
+                    self.colored_vars.push(v);
+                    if let Some(e2) = self.var_eq[v]
+                        && !self.eq_mark[e2]
+                    {
+                        next = Some((v, e2));
+                        break;
+                    }
+                }
+            }
+            stack.last_mut().expect("non-empty").1 = p;
+            match next {
+                Some((v, e2)) => {
+                    self.mark_eq(e2);
+                    via.push(v);
+                    stack.push((e2, 0, true));
+                }
+                None => {
+                    stack.pop();
+                    via.pop();
+                }
+            }
+        }
+        false
+    }
+
+    fn mark_eq(&mut self, e: usize) {
+        if !self.eq_mark[e] {
+            self.eq_mark[e] = true;
+            self.colored_eqs.push(e);
+        }
+    }
+}
+
+/// Runs Pantelides' algorithm. `var_diff` must have one entry per slot of `graph`
+/// (`graph.n_vars`). Fails with the singular part when the system is structurally
+/// singular (no number of differentiations makes it solvable).
+pub fn pantelides(
+    graph: &BipartiteGraph,
+    var_diff: &[Option<usize>],
+) -> Result<IndexReduction, StructurallySingular> {
+    assert_eq!(
+        var_diff.len(),
+        graph.n_vars,
+        "pantelides: one var_diff entry per slot"
+    );
+    // Solvability: a perfect matching of equations to derivative chains.
+    let (chains, base) = chain_graph(graph, var_diff);
+    let allowed: Vec<bool> = (0..graph.n_vars).map(|v| base[v] == v).collect();
+    let cm = maximum_matching(&chains, Some(&allowed), None);
+    if cm.size() < graph.n_eqs() {
+        let dm = super::dm::dulmage_mendelsohn(&chains, &cm, Some(&allowed));
+        let mut equations = dm.over_eqs.clone();
+        let mut variables = dm.over_vars.clone();
+        if equations.is_empty() {
+            equations = dm.unmatched_eqs.clone();
+        }
+        if variables.is_empty() {
+            variables = dm.under_vars.clone();
+        }
+        return Err(StructurallySingular {
+            equations,
+            variables,
+        });
+    }
+
+    let mut adj: Vec<Vec<usize>> = graph.eq_vars.clone();
+    let mut var_diff: Vec<Option<usize>> = var_diff.to_vec();
+    let mut eq_diff: Vec<Option<usize>> = vec![None; adj.len()];
+    let mut var_eq: Vec<Option<usize>> = vec![None; var_diff.len()];
+    let mut eq_var: Vec<Option<usize>> = vec![None; adj.len()];
+    let n_original = adj.len();
+    // A differentiation bound that a solvable system never reaches.
+    let limit = 4 * (graph.n_vars + n_original) + 16;
+    let mut rounds = 0usize;
+
+    for k in 0..n_original {
+        let mut i = k;
+        loop {
+            let n_vars = var_diff.len();
+            let n_eqs = adj.len();
+            let mut s = Search {
+                adj: &adj,
+                var_diff: &var_diff,
+                var_eq: &mut var_eq,
+                eq_var: &mut eq_var,
+                colored_eqs: Vec::new(),
+                colored_vars: Vec::new(),
+                eq_mark: vec![false; n_eqs],
+                var_mark: vec![false; n_vars],
+            };
+            if s.augment(i) {
+                break;
+            }
+            let (colored_eqs, colored_vars) = (s.colored_eqs, s.colored_vars);
+            rounds += 1;
+            if rounds > limit {
+                return Err(StructurallySingular {
+                    equations: colored_eqs
+                        .into_iter()
+                        .filter(|&e| e < n_original)
+                        .collect(),
+                    variables: colored_vars,
+                });
+            }
+            for &v in &colored_vars {
+                if var_diff[v].is_none() {
+                    let w = var_diff.len();
+                    var_diff.push(None);
+                    var_eq.push(None);
+                    var_diff[v] = Some(w);
+                }
+            }
+            for &e in &colored_eqs {
+                if eq_diff[e].is_none() {
+                    let mut vars: Vec<usize> = Vec::with_capacity(adj[e].len() * 2);
+                    for &v in &adj[e] {
+                        vars.push(v);
+                        if let Some(d) = var_diff[v] {
+                            vars.push(d);
+                        }
+                    }
+                    vars.sort_unstable();
+                    vars.dedup();
+                    let ne = adj.len();
+                    adj.push(vars);
+                    eq_diff.push(None);
+                    eq_var.push(None);
+                    eq_diff[e] = Some(ne);
+                }
+            }
+            // The derivatives of the colored slots inherit the derivatives of their
+            // equations; the old pairs are dropped (lower-order slots leave the matching).
+            for &v in &colored_vars {
+                if let Some(e) = var_eq[v] {
+                    let dv = var_diff[v].expect("created above");
+                    let de = eq_diff[e].expect("colored equation was differentiated");
+                    var_eq[dv] = Some(de);
+                    eq_var[de] = Some(dv);
+                    var_eq[v] = None;
+                    if eq_var[e] == Some(v) {
+                        eq_var[e] = None;
+                    }
+                }
+            }
+            i = eq_diff[i].expect("the failed equation is colored");
+        }
+    }
+    let mut g = BipartiteGraph::new(var_diff.len());
+    for vars in adj {
+        g.add_equation(vars);
+    }
+    Ok(IndexReduction {
+        graph: g,
+        var_diff,
+        eq_diff,
+        matching: Matching {
+            eq_to_var: eq_var,
+            var_to_eq: var_eq,
+        },
+    })
+}
+
+#[cfg(test)]
+#[path = "pantelides_tests.rs"]
+pub(crate) mod tests;
