@@ -1,11 +1,23 @@
 //! The modeling compiler and solver behind `multibody`: symbolic expressions, models,
 //! structural analysis, code generation, SUNDIALS IDA and plots. Domain-agnostic.
+//!
+//! The pipeline: a [`model::System`] tree is flattened ([`model::flatten`]), simplified
+//! ([`simplify::structural_simplify`]: alias elimination, index reduction, state
+//! selection, sorting, tearing, code generation), initialized and integrated
+//! ([`solve::DaeProblem`]), and read back by name ([`solve::Solution`]).
 
 pub mod codegen;
+mod error;
 pub mod expr;
 pub mod model;
 pub mod names;
 pub mod plot;
-/// Integration of differential-algebraic equations with SUNDIALS IDA.
+pub mod simplify;
 pub mod solve;
 pub mod structure;
+
+pub use error::Error;
+pub use expr::Expr;
+pub use model::System;
+pub use simplify::{SimplifiedSystem, structural_simplify};
+pub use solve::{DaeProblem, Solution, SolverOptions};

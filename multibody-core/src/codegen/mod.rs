@@ -15,6 +15,7 @@
 //! differentiates through those solves exactly.
 
 mod compile;
+pub mod dae;
 mod forward;
 mod sparsity;
 mod tape;

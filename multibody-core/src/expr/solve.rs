@@ -23,7 +23,7 @@ impl Arena {
         }
         let mut map = HashMap::new();
         map.insert(x, self.zero());
-        let b = self.substitute(e, &map);
+        let b = self.substitute_leaves(e, &map);
         let nb = self.neg(b);
         let solution = self.div(nb, a);
         Some(LinearSolve {

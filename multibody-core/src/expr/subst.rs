@@ -10,7 +10,25 @@ impl Arena {
     /// derivative of its image, unless `der(x)` has an entry of its own.
     pub fn substitute(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
         let mut memo = HashMap::new();
-        self.subst_rec(e, map, &mut memo)
+        self.subst_rec(e, map, &mut memo, false)
+    }
+
+    /// Like [`Arena::substitute`], but `der(x)` nodes are leaves of their own: they are
+    /// replaced only by an entry of their own, never through `x` (as in an index-reduced
+    /// system, where `x` and `der(x)` are distinct unknowns).
+    pub fn substitute_leaves(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
+        let mut memo = HashMap::new();
+        self.subst_rec(e, map, &mut memo, true)
+    }
+
+    /// [`Arena::substitute_leaves`] with a memo shared across calls.
+    pub fn substitute_leaves_memo(
+        &mut self,
+        e: Id,
+        map: &HashMap<Id, Id>,
+        memo: &mut HashMap<Id, Id>,
+    ) -> Id {
+        self.subst_rec(e, map, memo, true)
     }
 
     /// [`Arena::substitute`] with a memo shared across calls (for many expressions
@@ -21,10 +39,16 @@ impl Arena {
         map: &HashMap<Id, Id>,
         memo: &mut HashMap<Id, Id>,
     ) -> Id {
-        self.subst_rec(e, map, memo)
+        self.subst_rec(e, map, memo, false)
     }
 
-    fn subst_rec(&mut self, e: Id, map: &HashMap<Id, Id>, memo: &mut HashMap<Id, Id>) -> Id {
+    fn subst_rec(
+        &mut self,
+        e: Id,
+        map: &HashMap<Id, Id>,
+        memo: &mut HashMap<Id, Id>,
+        opaque: bool,
+    ) -> Id {
         if let Some(&r) = map.get(&e) {
             return r;
         }
@@ -34,15 +58,16 @@ impl Arena {
         let node = self.node(e).clone();
         let r = match node {
             Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => e,
+            Node::Der(_) if opaque => e,
             Node::Der(x) => {
-                let nx = self.subst_rec(x, map, memo);
+                let nx = self.subst_rec(x, map, memo, opaque);
                 if nx == x { e } else { self.der(nx) }
             }
             Node::Sum(ts, c) => {
                 let mut terms = Vec::with_capacity(ts.len());
                 let mut changed = false;
                 for &(k, t) in ts.iter() {
-                    let nt = self.subst_rec(t, map, memo);
+                    let nt = self.subst_rec(t, map, memo, opaque);
                     changed |= nt != t;
                     terms.push((f64::from_bits(k), nt));
                 }
@@ -56,7 +81,7 @@ impl Arena {
                 let mut factors = Vec::with_capacity(fs.len());
                 let mut changed = false;
                 for &(b, n) in fs.iter() {
-                    let nb = self.subst_rec(b, map, memo);
+                    let nb = self.subst_rec(b, map, memo, opaque);
                     changed |= nb != b;
                     factors.push((nb, n));
                 }
@@ -68,25 +93,34 @@ impl Arena {
                 }
             }
             Node::Pow(a, b) => {
-                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                let (na, nb) = (
+                    self.subst_rec(a, map, memo, opaque),
+                    self.subst_rec(b, map, memo, opaque),
+                );
                 self.pow(na, nb)
             }
             Node::F1(f, a) => {
-                let na = self.subst_rec(a, map, memo);
+                let na = self.subst_rec(a, map, memo, opaque);
                 self.f1(f, na)
             }
             Node::F2(f, a, b) => {
-                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                let (na, nb) = (
+                    self.subst_rec(a, map, memo, opaque),
+                    self.subst_rec(b, map, memo, opaque),
+                );
                 self.f2(f, na, nb)
             }
             Node::Cmp(op, a, b) => {
-                let (na, nb) = (self.subst_rec(a, map, memo), self.subst_rec(b, map, memo));
+                let (na, nb) = (
+                    self.subst_rec(a, map, memo, opaque),
+                    self.subst_rec(b, map, memo, opaque),
+                );
                 self.cmp(op, na, nb)
             }
             Node::If(c, a, b) => {
-                let nc = self.subst_rec(c, map, memo);
-                let na = self.subst_rec(a, map, memo);
-                let nb = self.subst_rec(b, map, memo);
+                let nc = self.subst_rec(c, map, memo, opaque);
+                let na = self.subst_rec(a, map, memo, opaque);
+                let nb = self.subst_rec(b, map, memo, opaque);
                 self.ite(nc, na, nb)
             }
         };

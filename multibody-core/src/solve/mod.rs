@@ -1,2 +1,21 @@
+//! Solving: consistent initialization, integration with SUNDIALS IDA, and solutions.
+//!
+//! [`DaeProblem::new`] evaluates parameters and start values and runs the
+//! initialization (its own problem at t0, solved by damped Newton); [`DaeProblem::solve`]
+//! integrates with IDA (the only FFI of the project lives in [`ida`] and the linear
+//! solver glue) and returns a [`Solution`].
+
+mod error;
 pub mod ida;
+mod init;
 mod linsol;
+mod newton;
+mod options;
+mod problem;
+mod solution;
+
+pub use error::{InitError, SolutionError, SolveError};
+pub use ida::IdaStats;
+pub use options::{LinearSolverChoice, SolverOptions};
+pub use problem::{DaeProblem, InitReport};
+pub use solution::Solution;

@@ -71,10 +71,13 @@ pub fn invert(map: &[Option<usize>], n: usize) -> Vec<Option<usize>> {
 /// Why index reduction failed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StructurallySingular {
-    /// Equations (original numbering) taking part in the singular subsystem.
+    /// Equations (original numbering) of the over-determined part (or those taking part
+    /// in a failed differentiation).
     pub equations: Vec<usize>,
-    /// Slots taking part in it.
-    pub variables: Vec<usize>,
+    /// Slots determined more than once (the over-determined part).
+    pub overdetermined: Vec<usize>,
+    /// Slots no equation can determine.
+    pub undetermined: Vec<usize>,
 }
 
 /// The graph with every slot replaced by the base slot of its derivative chain: a system
@@ -200,17 +203,15 @@ pub fn pantelides(
     let cm = maximum_matching(&chains, Some(&allowed), None);
     if cm.size() < graph.n_eqs() {
         let dm = super::dm::dulmage_mendelsohn(&chains, &cm, Some(&allowed));
-        let mut equations = dm.over_eqs.clone();
-        let mut variables = dm.over_vars.clone();
-        if equations.is_empty() {
-            equations = dm.unmatched_eqs.clone();
-        }
-        if variables.is_empty() {
-            variables = dm.under_vars.clone();
-        }
+        let equations = if dm.over_eqs.is_empty() {
+            dm.unmatched_eqs.clone()
+        } else {
+            dm.over_eqs.clone()
+        };
         return Err(StructurallySingular {
             equations,
-            variables,
+            overdetermined: dm.over_vars.clone(),
+            undetermined: dm.under_vars.clone(),
         });
     }
 
@@ -250,7 +251,8 @@ pub fn pantelides(
                         .into_iter()
                         .filter(|&e| e < n_original)
                         .collect(),
-                    variables: colored_vars,
+                    overdetermined: colored_vars,
+                    undetermined: Vec::new(),
                 });
             }
             for &v in &colored_vars {

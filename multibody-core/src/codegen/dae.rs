@@ -1,0 +1,179 @@
+//! The compiled functions of a simplified system: residual `F(t, u, u')`, its sparse
+//! Jacobian `dF/du + cj dF/du'`, and the observed variables.
+//!
+//! All tapes read the same inputs, laid out by [`InputLayout`]:
+//! `[t, p_0 .. p_m, u_0 .. u_n, u'_0 .. u'_n]`.
+
+use crate::expr::{Arena, Id};
+use crate::simplify::causalize::Step;
+
+use super::{CodegenError, DaeJacobian, Stmt, Tape, TapeBuilder};
+
+/// Positions of the inputs of the compiled tapes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct InputLayout {
+    /// Number of parameter inputs.
+    pub n_params: usize,
+    /// Number of unknowns.
+    pub n: usize,
+}
+
+impl InputLayout {
+    /// Slot of time.
+    pub const TIME: usize = 0;
+
+    /// Slot of parameter `j`.
+    pub fn param(&self, j: usize) -> usize {
+        1 + j
+    }
+
+    /// Slot of unknown `k`.
+    pub fn u(&self, k: usize) -> usize {
+        1 + self.n_params + k
+    }
+
+    /// Slot of the derivative of unknown `k`.
+    pub fn up(&self, k: usize) -> usize {
+        1 + self.n_params + self.n + k
+    }
+
+    /// Total number of inputs.
+    pub fn len(&self) -> usize {
+        1 + self.n_params + 2 * self.n
+    }
+
+    /// Whether there are no inputs (never: time is always one).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+}
+
+/// A row of the residual, as the code generator needs it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Row {
+    /// Output `expr`.
+    Expr(Id),
+    /// Output `u'[k] - expr`.
+    DerivativeMinus(usize, Id),
+}
+
+/// The compiled functions of a simplified system.
+#[derive(Clone, Debug)]
+pub struct CompiledDae {
+    /// Input layout of every tape here.
+    pub layout: InputLayout,
+    /// The residual: one output per unknown.
+    pub residual: Tape,
+    /// The Jacobian pattern, colouring and evaluator for [`Self::residual`].
+    pub jacobian: DaeJacobian,
+    /// Every observable variable, one output each, named by [`Self::observed_names`].
+    pub observed: Tape,
+    /// Names of the outputs of [`Self::observed`].
+    pub observed_names: Vec<String>,
+}
+
+/// What the code generator needs to know about a system.
+pub(crate) struct DaeSpec<'a> {
+    pub steps: &'a [Step],
+    /// Leaves read from `u` (in order of the unknowns).
+    pub unknowns: &'a [Id],
+    /// Leaves read from `u'`, with the index of their unknown.
+    pub derivative_inputs: &'a [(Id, usize)],
+    pub rows: &'a [Row],
+    /// Observed outputs.
+    pub observed: &'a [(String, Id)],
+    pub n_params: usize,
+}
+
+/// Binds time, parameters, unknowns and their derivatives, then adds the steps.
+fn builder<'a>(
+    arena: &'a Arena,
+    leaves: &Leaves,
+    spec: &DaeSpec<'_>,
+    layout: InputLayout,
+) -> Result<TapeBuilder<'a>, CodegenError> {
+    let mut b = TapeBuilder::new(arena, layout.len());
+    if let Some(t) = leaves.time {
+        b.input(t, InputLayout::TIME);
+    }
+    for (j, &p) in leaves.params.iter().enumerate() {
+        b.input(p, layout.param(j));
+    }
+    for (k, &u) in spec.unknowns.iter().enumerate() {
+        b.input(u, layout.u(k));
+    }
+    for &(leaf, k) in spec.derivative_inputs {
+        b.input(leaf, layout.up(k));
+    }
+    for s in spec.steps {
+        let stmt = match s {
+            Step::Assign { target, expr, .. } => Stmt::Assign {
+                target: *target,
+                expr: *expr,
+            },
+            Step::LinearSolve { targets, a, c } => Stmt::LinearSolve {
+                targets: targets.clone(),
+                a: a.clone(),
+                c: c.clone(),
+            },
+        };
+        b.stmt(&stmt)?;
+    }
+    Ok(b)
+}
+
+/// Leaves that exist in the arena before compilation (created with `&mut Arena`).
+pub(crate) struct Leaves {
+    pub time: Option<Id>,
+    pub params: Vec<Id>,
+}
+
+impl Leaves {
+    /// Creates the time and parameter leaves.
+    pub(crate) fn new(arena: &mut Arena, n_params: usize) -> Leaves {
+        Leaves {
+            time: Some(arena.time()),
+            params: (0..n_params).map(|j| arena.param(j as u32)).collect(),
+        }
+    }
+}
+
+/// Compiles the residual, its Jacobian and the observed function.
+pub(crate) fn compile_dae(
+    arena: &mut Arena,
+    spec: &DaeSpec<'_>,
+) -> Result<CompiledDae, CodegenError> {
+    let leaves = Leaves::new(arena, spec.n_params);
+    let layout = InputLayout {
+        n_params: spec.n_params,
+        n: spec.unknowns.len(),
+    };
+    let arena: &Arena = arena;
+    let mut b = builder(arena, &leaves, spec, layout)?;
+    for row in spec.rows {
+        match *row {
+            Row::Expr(e) => {
+                b.output(e)?;
+            }
+            Row::DerivativeMinus(k, e) => {
+                b.output_input_minus(layout.up(k), e)?;
+            }
+        }
+    }
+    let residual = b.build();
+    let jacobian = DaeJacobian::new(&residual, layout.n, layout.u(0), layout.up(0));
+    let mut b = builder(arena, &leaves, spec, layout)?;
+    let mut observed_names = Vec::with_capacity(spec.observed.len());
+    for (name, e) in spec.observed {
+        b.output(*e)?;
+        observed_names.push(name.clone());
+    }
+    let observed = b.build();
+    Ok(CompiledDae {
+        layout,
+        residual,
+        jacobian,
+        observed,
+        observed_names,
+    })
+}

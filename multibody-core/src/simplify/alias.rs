@@ -1,0 +1,320 @@
+//! Alias elimination: equations `a = ±b` and `a = constant` (an expression of parameters)
+//! remove one unknown each, and `der(x) = v` makes `v` the derivative of `x`.
+//!
+//! Variables made equal by connections form alias sets; each set keeps one
+//! representative (a fixed start value first, then the highest state priority, a start
+//! value, an internal variable rather than a connector's, the earliest declared) and the
+//! others become observed expressions `±representative`. A set that contains a constant
+//! equation is replaced by that constant entirely.
+
+use std::collections::HashMap;
+
+use crate::expr::{Arena, Id, Node};
+use crate::model::{FlatSystem, VarKind};
+
+/// What alias elimination found.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Aliases {
+    /// Per flat variable: its replacement when eliminated (an expression of the kept
+    /// variables and parameters).
+    pub replaced: Vec<Option<Id>>,
+    /// Per flat variable `x`: the variable `v` with `der(x) = v`, when `v` was made the
+    /// derivative slot of `x`.
+    pub derivative: Vec<Option<u32>>,
+    /// Indices of the flat equations removed (alias and derivative-alias equations).
+    pub removed: Vec<bool>,
+    /// The substitution of eliminated variables applied to every expression.
+    pub map: HashMap<Id, Id>,
+    /// `der(x) -> v` for the derivative aliases: applied after every time
+    /// differentiation so derivatives land on existing variables.
+    pub derivative_map: HashMap<Id, Id>,
+}
+
+enum Pattern {
+    /// `a = sign * b`.
+    Alias(u32, u32, f64),
+    /// `a = value` (parameters and constants only).
+    Constant(u32, Id),
+}
+
+/// Recognizes `k a + k' b = 0` with `|k| = |k'|`, and `k a + c = 0` with `c` free of
+/// unknowns and time.
+fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
+    match arena.node(r).clone() {
+        Node::Sum(ts, c) => {
+            let c = f64::from_bits(c);
+            let vars: Vec<(f64, u32)> = ts
+                .iter()
+                .filter_map(|&(k, t)| match arena.node(t) {
+                    Node::Var(i) => Some((f64::from_bits(k), *i)),
+                    _ => None,
+                })
+                .collect();
+            if ts.len() == 2 && vars.len() == 2 && c == 0.0 {
+                let ((k1, a), (k2, b)) = (vars[0], vars[1]);
+                if k1.abs() == k2.abs() && a != b {
+                    return Some(Pattern::Alias(a, b, -k2 / k1));
+                }
+            }
+            if vars.len() == 1 {
+                let (k, a) = vars[0];
+                let x = arena.var(a);
+                let rest = arena.linear_combination(0.0, &[(1.0, r), (-k, x)]);
+                if is_parameter_expression(arena, rest) {
+                    let v = arena.scale(-1.0 / k, rest);
+                    return Some(Pattern::Constant(a, v));
+                }
+            }
+            None
+        }
+        Node::Var(i) => Some(Pattern::Constant(i, arena.zero())),
+        _ => None,
+    }
+}
+
+/// Whether `e` contains only constants and parameters.
+pub(crate) fn is_parameter_expression(arena: &Arena, e: Id) -> bool {
+    arena
+        .leaves(e)
+        .iter()
+        .all(|&l| matches!(arena.node(l), Node::Param(_)))
+}
+
+/// Union-find with the sign of each member relative to its parent.
+struct SignedSets {
+    parent: Vec<u32>,
+    sign: Vec<f64>,
+}
+
+impl SignedSets {
+    fn find(&mut self, x: u32) -> (u32, f64) {
+        let mut path = Vec::new();
+        let mut cur = x;
+        while self.parent[cur as usize] != cur {
+            path.push(cur);
+            cur = self.parent[cur as usize];
+        }
+        // Path compression, accumulating signs from the root down.
+        let root = cur;
+        for &p in path.iter().rev() {
+            let par = self.parent[p as usize];
+            if par != root {
+                self.sign[p as usize] *= self.sign[par as usize];
+            }
+            self.parent[p as usize] = root;
+        }
+        (
+            root,
+            if x == root {
+                1.0
+            } else {
+                self.sign[x as usize]
+            },
+        )
+    }
+}
+
+/// Finds alias and derivative-alias equations of `flat` (after constant folding) and
+/// the substitution that removes them.
+pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
+    let nv = flat.variables.len();
+    let ne = flat.equations.len();
+    let mut sets = SignedSets {
+        parent: (0..nv as u32).collect(),
+        sign: vec![1.0; nv],
+    };
+    let mut constant: Vec<Option<Id>> = vec![None; nv];
+    let mut removed = vec![false; ne];
+    for (e, removed_e) in removed.iter_mut().enumerate() {
+        let r = flat.equations[e].residual;
+        match pattern(&mut flat.arena, r) {
+            Some(Pattern::Alias(a, b, s)) => {
+                let (ra, sa) = sets.find(a);
+                let (rb, sb) = sets.find(b);
+                if ra == rb {
+                    continue; // a loop of aliases: keep as an equation (it is redundant)
+                }
+                if constant[ra as usize].is_some() && constant[rb as usize].is_some() {
+                    continue;
+                }
+                // a = s b, a = sa ra, b = sb rb  =>  ra = sa s sb rb
+                sets.parent[ra as usize] = rb;
+                sets.sign[ra as usize] = sa * s * sb;
+                if let Some(c) = constant[ra as usize].take() {
+                    // ra = c  =>  rb = c / (sa s sb)
+                    let k = sa * s * sb;
+                    constant[rb as usize] = Some(flat.arena.scale(1.0 / k, c));
+                }
+                *removed_e = true;
+            }
+            Some(Pattern::Constant(a, v)) => {
+                let (ra, sa) = sets.find(a);
+                if constant[ra as usize].is_some() {
+                    continue;
+                }
+                // a = v, a = sa ra  =>  ra = sa v
+                constant[ra as usize] = Some(flat.arena.scale(sa, v));
+                *removed_e = true;
+            }
+            None => {}
+        }
+    }
+    // Members of each set.
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    for x in 0..nv as u32 {
+        let (r, _) = sets.find(x);
+        members.entry(r).or_default().push(x);
+    }
+    let mut replaced: Vec<Option<Id>> = vec![None; nv];
+    let mut map: HashMap<Id, Id> = HashMap::new();
+    let mut roots: Vec<u32> = members.keys().copied().collect();
+    roots.sort_unstable();
+    for root in roots {
+        let ms = &members[&root];
+        let sign_of = |sets: &mut SignedSets, x: u32| sets.find(x).1;
+        if let Some(c) = constant[root as usize] {
+            for &x in ms {
+                let s = sign_of(&mut sets, x);
+                let v = flat.arena.scale(s, c);
+                replaced[x as usize] = Some(v);
+            }
+            continue;
+        }
+        if ms.len() == 1 {
+            continue;
+        }
+        let rep = *ms
+            .iter()
+            .max_by(|&&a, &&b| {
+                let key = |x: u32| {
+                    let v = &flat.variables[x as usize];
+                    (
+                        v.fixed,
+                        v.state_priority,
+                        v.start.is_some(),
+                        v.kind == VarKind::Internal,
+                    )
+                };
+                let (ka, kb) = (key(a), key(b));
+                ka.0.cmp(&kb.0)
+                    .then(ka.1.total_cmp(&kb.1))
+                    .then(ka.2.cmp(&kb.2))
+                    .then(ka.3.cmp(&kb.3))
+                    .then(b.cmp(&a))
+            })
+            .expect("non-empty set");
+        let s_rep = sign_of(&mut sets, rep);
+        let rep_leaf = flat.arena.var(rep);
+        let mut best_priority = flat.variables[rep as usize].state_priority;
+        let mut start = flat.starts[rep as usize];
+        for &x in ms {
+            if x == rep {
+                continue;
+            }
+            // x = sx root, rep = srep root  =>  x = sx srep rep
+            let s = sign_of(&mut sets, x) * s_rep;
+            replaced[x as usize] = Some(flat.arena.scale(s, rep_leaf));
+            best_priority = best_priority.max(flat.variables[x as usize].state_priority);
+            if start.is_none()
+                && let Some(sx) = flat.starts[x as usize]
+            {
+                start = Some(flat.arena.scale(s, sx));
+            }
+        }
+        flat.variables[rep as usize].state_priority = best_priority;
+        flat.starts[rep as usize] = start;
+    }
+    for (x, r) in replaced.iter().enumerate() {
+        if let Some(r) = *r {
+            let leaf = flat.arena.var(x as u32);
+            map.insert(leaf, r);
+        }
+    }
+    // Apply the substitution to the remaining equations.
+    let mut memo = HashMap::new();
+    for (e, eq) in flat.equations.iter_mut().enumerate() {
+        if !removed[e] {
+            eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
+        }
+    }
+    // Derivative aliases: der(x) = v.
+    let mut derivative: Vec<Option<u32>> = vec![None; nv];
+    let mut is_derivative = vec![false; nv];
+    for e in 0..ne {
+        if removed[e] {
+            continue;
+        }
+        let r = flat.equations[e].residual;
+        let Some((x, v)) = derivative_pattern(&flat.arena, r) else {
+            continue;
+        };
+        if derivative[x as usize].is_some() || is_derivative[v as usize] || x == v {
+            continue;
+        }
+        // No cycle: following derivatives from v must not reach x.
+        let mut cur = v;
+        let mut cycle = false;
+        while let Some(d) = derivative[cur as usize] {
+            if d == x {
+                cycle = true;
+                break;
+            }
+            cur = d;
+        }
+        if cycle {
+            continue;
+        }
+        derivative[x as usize] = Some(v);
+        is_derivative[v as usize] = true;
+        removed[e] = true;
+    }
+    let mut dmap: HashMap<Id, Id> = HashMap::new();
+    for (x, d) in derivative.iter().enumerate() {
+        if let Some(v) = *d {
+            let xl = flat.arena.var(x as u32);
+            let dx = flat.arena.der(xl);
+            let vl = flat.arena.var(v);
+            dmap.insert(dx, vl);
+        }
+    }
+    if !dmap.is_empty() {
+        let mut memo = HashMap::new();
+        for (e, eq) in flat.equations.iter_mut().enumerate() {
+            if !removed[e] {
+                eq.residual = flat.arena.substitute_memo(eq.residual, &dmap, &mut memo);
+            }
+        }
+    }
+    Aliases {
+        replaced,
+        derivative,
+        removed,
+        map,
+        derivative_map: dmap,
+    }
+}
+
+/// Recognizes `k der(x) - k v = 0`.
+fn derivative_pattern(arena: &Arena, r: Id) -> Option<(u32, u32)> {
+    let Node::Sum(ts, c) = arena.node(r) else {
+        return None;
+    };
+    if ts.len() != 2 || f64::from_bits(*c) != 0.0 {
+        return None;
+    }
+    let mut der = None;
+    let mut var = None;
+    for &(k, t) in ts.iter() {
+        let k = f64::from_bits(k);
+        match arena.node(t) {
+            Node::Der(inner) => match arena.node(*inner) {
+                Node::Var(x) => der = Some((k, *x)),
+                _ => return None,
+            },
+            Node::Var(v) => var = Some((k, *v)),
+            _ => return None,
+        }
+    }
+    let ((kd, x), (kv, v)) = (der?, var?);
+    (kd == -kv).then_some((x, v))
+}

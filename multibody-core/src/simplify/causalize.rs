@@ -1,0 +1,446 @@
+//! Causalization: which equation computes which unknown, in which order.
+//!
+//! The equations are matched to the unknowns and sorted into blocks (BLT). A block of
+//! one equation that is linear in its unknown becomes an assignment; a nonlinear one an
+//! iteration variable. A larger block is torn: equations linear in a variable with a
+//! coefficient that cannot vanish become assignments, the rest residuals. A linear block
+//! is then solved inside the compiled functions (its torn system by a dense LU) unless
+//! it is large, in which case all its unknowns are left to the solver's sparse Newton;
+//! a nonlinear block leaves its tearing variables to the solver.
+
+use std::collections::{HashMap, HashSet};
+
+use crate::expr::{Arena, Id, Node};
+use crate::structure::BipartiteGraph;
+use crate::structure::blt::blt;
+use crate::structure::dm::dulmage_mendelsohn;
+use crate::structure::matching::maximum_matching;
+use crate::structure::tearing::{TearingEquation, tear};
+
+/// Limits deciding where linear blocks are solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LinearBlockLimits {
+    /// A linear block with more equations than this is left to the solver as algebraic
+    /// unknowns (sparse Newton) instead of being solved inside the compiled functions.
+    pub max_inline_size: usize,
+    /// A linear block whose tearing leaves more iteration variables than this is left to
+    /// the solver too (the inner dense solve grows with their cube).
+    pub max_inline_tearing: usize,
+}
+
+impl Default for LinearBlockLimits {
+    fn default() -> Self {
+        LinearBlockLimits {
+            max_inline_size: 400,
+            max_inline_tearing: 24,
+        }
+    }
+}
+
+/// A step of the computation, in execution order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// `target := expr`, from equation `equation`.
+    Assign {
+        /// The leaf assigned.
+        target: Id,
+        /// Its value.
+        expr: Id,
+        /// The equation solved (`usize::MAX` for temporaries).
+        equation: usize,
+    },
+    /// Solves `A x + c = 0` for `targets` (row-major `a`).
+    LinearSolve {
+        /// Unknowns solved for.
+        targets: Vec<Id>,
+        /// Matrix entries, row-major.
+        a: Vec<Id>,
+        /// Constant terms.
+        c: Vec<Id>,
+    },
+}
+
+/// How a block is solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlockKind {
+    /// One equation, solved explicitly.
+    Explicit,
+    /// Linear, solved inside the compiled functions.
+    LinearInline,
+    /// Linear, left to the solver (all its unknowns are iteration variables).
+    LinearSolver,
+    /// Nonlinear; its tearing variables are iteration variables.
+    Nonlinear,
+}
+
+/// Statistics of one block of size > 1 (or a nonlinear scalar).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BlockInfo {
+    /// How it is solved.
+    pub kind: BlockKind,
+    /// Number of equations (and unknowns).
+    pub size: usize,
+    /// Number of tearing variables.
+    pub torn: usize,
+}
+
+/// The result of causalization.
+#[derive(Clone, Debug, Default)]
+pub struct Schedule {
+    /// Steps in execution order.
+    pub steps: Vec<Step>,
+    /// Unknown leaves that are inputs to the steps (iteration variables).
+    pub iteration: Vec<Id>,
+    /// Residual expressions (as many as iteration variables) with their equation.
+    pub residuals: Vec<(Id, usize)>,
+    /// The blocks that are not plain assignments.
+    pub blocks: Vec<BlockInfo>,
+}
+
+/// Causalization failed: the system is structurally singular.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Singular {
+    /// Equations with nothing left to determine.
+    pub over_equations: Vec<usize>,
+    /// Unknowns those equations determine more than once.
+    pub over_unknowns: Vec<Id>,
+    /// Unknowns no equation determines.
+    pub under_unknowns: Vec<Id>,
+}
+
+/// Source of fresh leaves for temporaries.
+pub struct Temporaries {
+    /// The next free variable index for a temporary leaf.
+    pub next: u32,
+}
+
+impl Temporaries {
+    fn fresh(&mut self, arena: &mut Arena) -> Id {
+        let v = arena.var(self.next);
+        self.next += 1;
+        v
+    }
+}
+
+/// Whether `coefficient` cannot vanish: a nonzero constant or an expression of
+/// parameters only (parameters are taken to be valid, as MSL does for masses and
+/// inertias).
+pub fn safe_coefficient(arena: &Arena, coefficient: Id) -> bool {
+    if let Some(c) = arena.as_const(coefficient) {
+        return c != 0.0 && c.is_finite();
+    }
+    arena
+        .leaves(coefficient)
+        .iter()
+        .all(|&l| matches!(arena.node(l), Node::Param(_)))
+}
+
+/// Causalizes `equations` (residuals) for the `unknowns` (leaves); every other leaf is
+/// known.
+pub fn causalize(
+    arena: &mut Arena,
+    equations: &[Id],
+    unknowns: &[Id],
+    limits: LinearBlockLimits,
+    temps: &mut Temporaries,
+) -> Result<Schedule, Singular> {
+    let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(i, &l)| (l, i)).collect();
+    let mut g = BipartiteGraph::new(unknowns.len());
+    for &r in equations {
+        let vars: Vec<usize> = arena
+            .leaves(r)
+            .into_iter()
+            .filter_map(|l| index.get(&l).copied())
+            .collect();
+        g.add_equation(vars);
+    }
+    let m = maximum_matching(&g, None, None);
+    if !m.is_perfect() || equations.len() != unknowns.len() {
+        let dm = dulmage_mendelsohn(&g, &m, None);
+        let mut over = dm.over_eqs.clone();
+        if over.is_empty() {
+            over = dm.unmatched_eqs.clone();
+        }
+        return Err(Singular {
+            over_equations: over,
+            over_unknowns: dm.over_vars.iter().map(|&v| unknowns[v]).collect(),
+            under_unknowns: dm.under_vars.iter().map(|&v| unknowns[v]).collect(),
+        });
+    }
+    let mut out = Schedule::default();
+    for block in blt(&g, &m) {
+        let eqs: Vec<usize> = block.eqs.clone();
+        let vars: Vec<usize> = block.vars.clone();
+        if eqs.len() == 1 {
+            scalar_block(
+                arena,
+                equations[eqs[0]],
+                eqs[0],
+                unknowns[vars[0]],
+                &mut out,
+            );
+        } else {
+            let block_eqs: Vec<Id> = eqs.iter().map(|&e| equations[e]).collect();
+            let block_vars: Vec<Id> = vars.iter().map(|&v| unknowns[v]).collect();
+            solve_block(
+                arena,
+                &block_eqs,
+                &eqs,
+                &block_vars,
+                limits,
+                temps,
+                &mut out,
+            );
+        }
+    }
+    Ok(out)
+}
+
+fn scalar_block(arena: &mut Arena, r: Id, e: usize, x: Id, out: &mut Schedule) {
+    match arena.solve_linear(r, x) {
+        Some(sol) if safe_coefficient(arena, sol.coefficient) => {
+            out.steps.push(Step::Assign {
+                target: x,
+                expr: sol.solution,
+                equation: e,
+            });
+        }
+        Some(sol) => {
+            let mut map = HashMap::new();
+            map.insert(x, arena.zero());
+            let c = arena.substitute_leaves(r, &map);
+            out.steps.push(Step::LinearSolve {
+                targets: vec![x],
+                a: vec![sol.coefficient],
+                c: vec![c],
+            });
+            out.blocks.push(BlockInfo {
+                kind: BlockKind::LinearInline,
+                size: 1,
+                torn: 1,
+            });
+        }
+        None => {
+            out.iteration.push(x);
+            out.residuals.push((r, e));
+            out.blocks.push(BlockInfo {
+                kind: BlockKind::Nonlinear,
+                size: 1,
+                torn: 1,
+            });
+        }
+    }
+}
+
+fn solve_block(
+    arena: &mut Arena,
+    block_eqs: &[Id],
+    eq_ids: &[usize],
+    vars: &[Id],
+    limits: LinearBlockLimits,
+    temps: &mut Temporaries,
+    out: &mut Schedule,
+) {
+    let k = vars.len();
+    let var_set: HashSet<Id> = vars.iter().copied().collect();
+    let local: HashMap<Id, usize> = vars.iter().enumerate().map(|(i, &v)| (v, i)).collect();
+    let mut linear = true;
+    let mut teqs = Vec::with_capacity(k);
+    for &r in block_eqs {
+        let mut tv = Vec::new();
+        for l in arena.leaves(r) {
+            let Some(&j) = local.get(&l) else { continue };
+            let coef = arena.diff(r, l);
+            let depends = arena.contains_any(coef, &var_set);
+            if depends {
+                linear = false;
+            }
+            let solvable = !depends && safe_coefficient(arena, coef);
+            tv.push((j, solvable));
+        }
+        teqs.push(TearingEquation { vars: tv });
+    }
+    let t = tear(k, &teqs, None);
+    let torn: Vec<Id> = t.torn_vars.iter().map(|&j| vars[j]).collect();
+    let assignments: Vec<(usize, Id)> = t.assignments.iter().map(|&(e, j)| (e, vars[j])).collect();
+    if linear {
+        if k > limits.max_inline_size || torn.len() > limits.max_inline_tearing {
+            for (i, &v) in vars.iter().enumerate() {
+                let _ = i;
+                out.iteration.push(v);
+            }
+            for (i, &r) in block_eqs.iter().enumerate() {
+                out.residuals.push((r, eq_ids[i]));
+            }
+            out.blocks.push(BlockInfo {
+                kind: BlockKind::LinearSolver,
+                size: k,
+                torn: k,
+            });
+            return;
+        }
+        inline_linear(
+            arena,
+            block_eqs,
+            eq_ids,
+            &torn,
+            &assignments,
+            &t.residual_eqs,
+            temps,
+            out,
+        );
+        out.blocks.push(BlockInfo {
+            kind: BlockKind::LinearInline,
+            size: k,
+            torn: torn.len(),
+        });
+        return;
+    }
+    for &v in &torn {
+        out.iteration.push(v);
+    }
+    for &(e, x) in &assignments {
+        let sol = arena
+            .solve_linear(block_eqs[e], x)
+            .expect("tearing assigns only solvable equations");
+        out.steps.push(Step::Assign {
+            target: x,
+            expr: sol.solution,
+            equation: eq_ids[e],
+        });
+    }
+    for &e in &t.residual_eqs {
+        out.residuals.push((block_eqs[e], eq_ids[e]));
+    }
+    out.blocks.push(BlockInfo {
+        kind: BlockKind::Nonlinear,
+        size: k,
+        torn: torn.len(),
+    });
+}
+
+/// A linear torn block solved inside: with the torn unknowns `t`, every assigned unknown
+/// is affine in `t`, `x_a = alpha_a + sum_j beta_aj t_j`; temporaries hold `alpha` and
+/// `beta`, the residuals give `A t + c = 0`, and the assignments run again with the
+/// solved `t`.
+#[allow(clippy::too_many_arguments)]
+fn inline_linear(
+    arena: &mut Arena,
+    block_eqs: &[Id],
+    eq_ids: &[usize],
+    torn: &[Id],
+    assignments: &[(usize, Id)],
+    residual_eqs: &[usize],
+    temps: &mut Temporaries,
+    out: &mut Schedule,
+) {
+    let solutions: Vec<(Id, Id, usize)> = assignments
+        .iter()
+        .map(|&(e, x)| {
+            let sol = arena
+                .solve_linear(block_eqs[e], x)
+                .expect("tearing assigns only solvable equations");
+            (x, sol.solution, eq_ids[e])
+        })
+        .collect();
+    let r = torn.len();
+    if r == 0 {
+        for &(x, f, e) in &solutions {
+            out.steps.push(Step::Assign {
+                target: x,
+                expr: f,
+                equation: e,
+            });
+        }
+        return;
+    }
+    let zero = arena.zero();
+    // alpha: the assignments at t = 0.
+    let mut alpha_map: HashMap<Id, Id> = torn.iter().map(|&t| (t, zero)).collect();
+    for &(x, f, _) in &solutions {
+        let v = arena.substitute_leaves(f, &alpha_map);
+        let a = if arena.as_const(v).is_some() {
+            v
+        } else {
+            let tmp = temps.fresh(arena);
+            out.steps.push(Step::Assign {
+                target: tmp,
+                expr: v,
+                equation: usize::MAX,
+            });
+            tmp
+        };
+        alpha_map.insert(x, a);
+    }
+    // beta: sensitivities of each assigned unknown to each torn unknown.
+    let assigned: Vec<Id> = solutions.iter().map(|s| s.0).collect();
+    let partials: Vec<Vec<(usize, Id)>> = solutions
+        .iter()
+        .map(|&(_, f, _)| {
+            let leaves: HashSet<Id> = arena.leaves(f).into_iter().collect();
+            assigned
+                .iter()
+                .enumerate()
+                .filter(|(_, x)| leaves.contains(x))
+                .map(|(b, &x)| (b, arena.diff(f, x)))
+                .collect()
+        })
+        .collect();
+    let mut beta: Vec<Vec<Id>> = vec![Vec::with_capacity(solutions.len()); r];
+    for (j, &tj) in torn.iter().enumerate() {
+        for (a, &(_, f, _)) in solutions.iter().enumerate() {
+            let mut terms = vec![(1.0, arena.diff(f, tj))];
+            for &(b, p) in &partials[a] {
+                let prod = arena.mul(p, beta[j][b]);
+                terms.push((1.0, prod));
+            }
+            let v = arena.linear_combination(0.0, &terms);
+            let bj = if arena.as_const(v).is_some() {
+                v
+            } else {
+                let tmp = temps.fresh(arena);
+                out.steps.push(Step::Assign {
+                    target: tmp,
+                    expr: v,
+                    equation: usize::MAX,
+                });
+                tmp
+            };
+            beta[j].push(bj);
+        }
+    }
+    // A t + c = 0 from the residual equations.
+    let mut a_entries = Vec::with_capacity(r * r);
+    let mut c = Vec::with_capacity(r);
+    for &e in residual_eqs {
+        let res = block_eqs[e];
+        let leaves: HashSet<Id> = arena.leaves(res).into_iter().collect();
+        let res_partials: Vec<(usize, Id)> = assigned
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| leaves.contains(x))
+            .map(|(b, &x)| (b, arena.diff(res, x)))
+            .collect();
+        for (j, &tj) in torn.iter().enumerate() {
+            let mut terms = vec![(1.0, arena.diff(res, tj))];
+            for &(b, p) in &res_partials {
+                let prod = arena.mul(p, beta[j][b]);
+                terms.push((1.0, prod));
+            }
+            a_entries.push(arena.linear_combination(0.0, &terms));
+        }
+        c.push(arena.substitute_leaves(res, &alpha_map));
+    }
+    out.steps.push(Step::LinearSolve {
+        targets: torn.to_vec(),
+        a: a_entries,
+        c,
+    });
+    for &(x, f, e) in &solutions {
+        out.steps.push(Step::Assign {
+            target: x,
+            expr: f,
+            equation: e,
+        });
+    }
+}

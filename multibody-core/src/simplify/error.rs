@@ -1,0 +1,90 @@
+//! Errors of structural simplification.
+
+/// What structural simplification found wrong with a model. Equations are quoted as
+/// written (with the component's path), variables by their full paths.
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
+pub enum SimplifyError {
+    /// No assignment of equations to unknowns exists, even after differentiation.
+    #[error("{}", singular_message(.model, .equations, .overdetermined, .undetermined, .hint))]
+    StructurallySingular {
+        /// Model name.
+        model: String,
+        /// Equations of the over-determined part (more equations than they determine).
+        equations: Vec<String>,
+        /// Unknowns these equations determine more than once.
+        overdetermined: Vec<String>,
+        /// Unknowns no equation determines.
+        undetermined: Vec<String>,
+        /// What this means for the model, when known.
+        hint: Option<String>,
+    },
+    /// State selection could not honour a hard requirement.
+    #[error("model `{model}`: {message}")]
+    StateSelection {
+        /// Model name.
+        model: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// Code generation failed (an internal error: please report it).
+    #[error("model `{model}`: code generation failed: {message}")]
+    Codegen {
+        /// Model name.
+        model: String,
+        /// The code generator's message.
+        message: String,
+    },
+}
+
+impl SimplifyError {
+    /// A structural singularity without a hint.
+    pub fn singular(
+        model: &str,
+        equations: Vec<String>,
+        overdetermined: Vec<String>,
+        undetermined: Vec<String>,
+    ) -> Self {
+        SimplifyError::StructurallySingular {
+            model: model.to_string(),
+            equations,
+            overdetermined,
+            undetermined,
+            hint: None,
+        }
+    }
+}
+
+fn singular_message(
+    model: &str,
+    equations: &[String],
+    overdetermined: &[String],
+    undetermined: &[String],
+    hint: &Option<String>,
+) -> String {
+    let mut m = format!("model `{model}` is structurally singular");
+    if !undetermined.is_empty() {
+        m.push_str(&format!(
+            "\n  no equation determines {}",
+            crate::names::list(undetermined, 16)
+        ));
+    }
+    if !overdetermined.is_empty() {
+        m.push_str(&format!(
+            "\n  determined more than once: {}",
+            crate::names::list(overdetermined, 16)
+        ));
+    }
+    if !equations.is_empty() {
+        m.push_str("\n  by the equations:");
+        for e in equations.iter().take(16) {
+            m.push_str(&format!("\n    {e}"));
+        }
+        if equations.len() > 16 {
+            m.push_str(&format!("\n    ... ({} more)", equations.len() - 16));
+        }
+    }
+    if let Some(h) = hint {
+        m.push_str(&format!("\n  {h}"));
+    }
+    m
+}

@@ -1,0 +1,304 @@
+//! `structural_simplify`: from a model to states, algebraic unknowns and residuals.
+//!
+//! The steps, each in its own file: flattening and the balance check (in
+//! [`crate::model`]), [`alias`] elimination, index reduction and state selection
+//! ([`reduce`], on the integer algorithms of [`crate::structure`]), [`causalize`]
+//! (matching, BLT, tearing, where linear blocks are solved), and the assembly of the
+//! [`SimplifiedSystem`] with its compiled functions.
+
+mod alias;
+pub mod causalize;
+mod error;
+pub(crate) mod reduce;
+mod system;
+
+#[cfg(test)]
+mod tests;
+
+use std::collections::{HashMap, HashSet};
+use std::time::Instant;
+
+pub use causalize::{BlockKind, LinearBlockLimits};
+pub use error::SimplifyError;
+pub use reduce::Slot;
+pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
+
+use crate::Error;
+use crate::codegen::dae::{DaeSpec, Row, compile_dae};
+use crate::expr::Id;
+use crate::model::{System, check_balance, flatten};
+
+use causalize::{Temporaries, causalize};
+use reduce::{ReduceInput, reduce};
+
+/// Options of [`structural_simplify_with`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimplifyOptions {
+    /// Where linear algebraic blocks are solved (default: [`LinearBlockLimits::default`],
+    /// blocks up to 400 equations with at most 24 tearing variables inside).
+    pub linear_blocks: LinearBlockLimits,
+}
+
+impl Default for SimplifyOptions {
+    fn default() -> Self {
+        SimplifyOptions {
+            linear_blocks: LinearBlockLimits::default(),
+        }
+    }
+}
+
+/// Simplifies a model with default options: see [`structural_simplify_with`].
+pub fn structural_simplify(model: &System) -> Result<SimplifiedSystem, Error> {
+    structural_simplify_with(model, &SimplifyOptions::default())
+}
+
+/// Flattens `model`, checks its balance, eliminates aliases, reduces the index,
+/// selects states, sorts and tears the equations, and compiles the residual, its
+/// Jacobian and the observed variables.
+pub fn structural_simplify_with(
+    model: &System,
+    options: &SimplifyOptions,
+) -> Result<SimplifiedSystem, Error> {
+    let t0 = Instant::now();
+    let mut flat = flatten(model)?;
+    check_balance(&flat)?;
+    let flatten_s = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let name = flat.name.clone();
+    let flat_equations = flat.equations.len();
+    let flat_unknowns = flat.variables.len();
+
+    let aliases = alias::eliminate_aliases(&mut flat);
+    let nv = flat.variables.len();
+    let kept: Vec<bool> = aliases.replaced.iter().map(Option::is_none).collect();
+    let names: Vec<String> = flat.variables.iter().map(|v| v.name.clone()).collect();
+    let priority: Vec<f64> = flat.variables.iter().map(|v| v.state_priority).collect();
+    let equations: Vec<(Id, String)> = flat
+        .equations
+        .iter()
+        .enumerate()
+        .filter(|(e, _)| !aliases.removed[*e])
+        .map(|(_, eq)| (eq.residual, flat.describe(eq)))
+        .collect();
+    // Initial equations and start values under the same substitutions.
+    let mut full_map = aliases.map.clone();
+    full_map.extend(aliases.derivative_map.iter().map(|(&k, &v)| (k, v)));
+    let initial_equations: Vec<(Id, String)> = flat
+        .initial_equations
+        .clone()
+        .iter()
+        .map(|eq| {
+            let r = flat.arena.substitute(eq.residual, &full_map);
+            (r, flat.describe(eq))
+        })
+        .collect();
+    let starts = flat.starts.clone();
+    let reduced = reduce(
+        ReduceInput {
+            arena: &mut flat.arena,
+            names: &names,
+            priority: &priority,
+            kept: &kept,
+            derivative_map: &aliases.derivative_map,
+            equations,
+        },
+        &name,
+    )?;
+
+    // Sorting: every slot that is not a state is an unknown.
+    let state_set: HashSet<usize> = reduced.states.iter().copied().collect();
+    let unknown_leaves: Vec<Id> = (0..reduced.slots.len())
+        .filter(|s| !state_set.contains(s))
+        .map(|s| reduced.slots[s].leaf)
+        .collect();
+    let residuals: Vec<Id> = reduced.equations.iter().map(|e| e.residual).collect();
+    let mut temps = Temporaries { next: nv as u32 };
+    let schedule = causalize(
+        &mut flat.arena,
+        &residuals,
+        &unknown_leaves,
+        options.linear_blocks,
+        &mut temps,
+    )
+    .map_err(|s| {
+        let name_of = |l: &Id| reduced.slots[reduced.slot_of[l]].name.clone();
+        SimplifyError::singular(
+            &name,
+            s.over_equations
+                .iter()
+                .map(|&e| reduced.equations[e].text.clone())
+                .collect(),
+            s.over_unknowns.iter().map(name_of).collect(),
+            s.under_unknowns.iter().map(name_of).collect(),
+        )
+    })?;
+
+    // Unknowns: position-level states, algebraic unknowns, velocity-level states.
+    let iteration: HashSet<Id> = schedule.iteration.iter().copied().collect();
+    let mut position = Vec::new();
+    let mut velocity = Vec::new();
+    for &s in &reduced.states {
+        let d = reduced.var_diff[s].expect("a state has a derivative");
+        if state_set.contains(&d) {
+            position.push(s);
+        } else {
+            velocity.push(s);
+        }
+    }
+    let state_leaf_derivs: HashMap<Id, usize> = reduced
+        .states
+        .iter()
+        .map(|&s| (reduced.slots[reduced.var_diff[s].expect("state")].leaf, s))
+        .collect();
+    let algebraic: Vec<Id> = schedule
+        .iteration
+        .iter()
+        .copied()
+        .filter(|l| !state_leaf_derivs.contains_key(l))
+        .collect();
+    let mut unknowns: Vec<Id> = Vec::new();
+    let mut mass = Vec::new();
+    for &s in &position {
+        unknowns.push(reduced.slots[s].leaf);
+        mass.push(1.0);
+    }
+    for &l in &algebraic {
+        unknowns.push(l);
+        mass.push(0.0);
+    }
+    for &s in &velocity {
+        unknowns.push(reduced.slots[s].leaf);
+        mass.push(1.0);
+    }
+    let index_of: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(k, &l)| (l, k)).collect();
+    let mut rows = Vec::new();
+    let mut derivative_inputs = Vec::new();
+    for &(r, e) in &schedule.residuals {
+        rows.push(system::ResidualRow::Equation {
+            residual: r,
+            equation: e,
+        });
+    }
+    for &s in position.iter().chain(&velocity) {
+        let k = index_of[&reduced.slots[s].leaf];
+        let d = reduced.slots[reduced.var_diff[s].expect("state")].leaf;
+        if iteration.contains(&d) {
+            derivative_inputs.push((d, k));
+        } else {
+            rows.push(system::ResidualRow::StateDerivative { state: k, value: d });
+        }
+    }
+    debug_assert_eq!(rows.len(), unknowns.len());
+    let simplify_s = t1.elapsed().as_secs_f64();
+
+    // Code generation.
+    let t2 = Instant::now();
+    let observed = observed_outputs(&flat, &aliases.replaced, &reduced);
+    let code_rows: Vec<Row> = rows
+        .iter()
+        .map(|r| match *r {
+            system::ResidualRow::Equation { residual, .. } => Row::Expr(residual),
+            system::ResidualRow::StateDerivative { state, value } => {
+                Row::DerivativeMinus(state, value)
+            }
+        })
+        .collect();
+    let compiled = compile_dae(
+        &mut flat.arena,
+        &DaeSpec {
+            steps: &schedule.steps,
+            unknowns: &unknowns,
+            derivative_inputs: &derivative_inputs,
+            rows: &code_rows,
+            observed: &observed,
+            n_params: flat.parameters.len(),
+        },
+    )
+    .map_err(|e| SimplifyError::Codegen {
+        model: name.clone(),
+        message: e.to_string(),
+    })?;
+    let codegen_s = t2.elapsed().as_secs_f64();
+
+    let mut statistics = Statistics {
+        flat_equations,
+        flat_unknowns,
+        alias_variables: aliases.replaced.iter().filter(|r| r.is_some()).count(),
+        derivative_aliases: aliases.derivative.iter().filter(|d| d.is_some()).count(),
+        differentiated_equations: reduced.equations.len() - reduced.n_original,
+        dummy_derivatives: reduced.dummy.iter().filter(|&&d| d).count(),
+        sorted_equations: reduced.equations.len(),
+        states: position.len() + velocity.len(),
+        algebraic: algebraic.len(),
+        assignments: schedule
+            .steps
+            .iter()
+            .filter(|s| matches!(s, causalize::Step::Assign { equation, .. } if *equation != usize::MAX))
+            .count(),
+        times: PhaseTimes {
+            flatten_s,
+            simplify_s,
+            codegen_s,
+        },
+        ..Statistics::default()
+    };
+    statistics.blocks(&schedule.blocks);
+    log::debug!("{statistics}");
+    let mut warnings = reduced.warnings.clone();
+    warnings.sort();
+    warnings.dedup();
+    let states = reduced.states.clone();
+    Ok(SimplifiedSystem {
+        name,
+        variables: flat.variables.clone(),
+        parameters: flat.parameters.clone(),
+        parameter_values: flat.parameter_values.clone(),
+        starts,
+        replaced: aliases.replaced.clone(),
+        slots: reduced.slots,
+        slot_of: reduced.slot_of,
+        var_diff: reduced.var_diff,
+        equations: reduced.equations,
+        initial_equations,
+        states,
+        unknowns,
+        mass_matrix_diagonal: mass,
+        schedule,
+        rows,
+        derivative_inputs,
+        next_temporary: temps.next,
+        compiled,
+        statistics,
+        warnings,
+        arena: flat.arena,
+    })
+}
+
+/// Every variable of the model (replaced ones by their expression) and every
+/// derivative slot, as observed outputs.
+fn observed_outputs(
+    flat: &crate::model::FlatSystem,
+    replaced: &[Option<Id>],
+    reduced: &reduce::Reduced,
+) -> Vec<(String, Id)> {
+    let mut out = Vec::with_capacity(flat.variables.len() + reduced.slots.len());
+    let mut var_leaf: Vec<Option<Id>> = vec![None; flat.variables.len()];
+    for s in &reduced.slots {
+        if s.order == 0 {
+            var_leaf[s.var] = Some(s.leaf);
+        }
+    }
+    for (i, v) in flat.variables.iter().enumerate() {
+        let e = match replaced[i] {
+            Some(r) => r,
+            None => var_leaf[i].expect("every kept variable has a slot"),
+        };
+        out.push((v.name.clone(), e));
+    }
+    for s in &reduced.slots {
+        if s.order > 0 {
+            out.push((s.name.clone(), s.leaf));
+        }
+    }
+    out
+}

@@ -1,0 +1,335 @@
+//! Index reduction on the symbolic system: slots for every variable and derivative, the
+//! integer graph for Pantelides, symbolic differentiation of the equations it marks, and
+//! dummy-derivative state selection.
+
+use std::collections::HashMap;
+
+use crate::expr::{Arena, Id, Node};
+use crate::structure::BipartiteGraph;
+use crate::structure::dummy_derivatives::{SelectionError, StateRank, dummy_derivatives};
+use crate::structure::pantelides::{StructurallySingular, pantelides};
+
+use super::error::SimplifyError;
+
+/// One unknown of the reduced system: a variable or a time derivative of one.
+#[derive(Clone, Debug)]
+pub struct Slot {
+    /// The leaf node (`Var(i)` or `der(...)`) in the system's arena.
+    pub leaf: Id,
+    /// The flat variable behind it.
+    pub var: usize,
+    /// How many times `var` is differentiated (0 for the variable itself).
+    pub order: usize,
+    /// Display name: `j1.phi`, `der(j1.w)`.
+    pub name: String,
+}
+
+/// An equation of the reduced system.
+#[derive(Clone, Debug)]
+pub struct ReducedEquation {
+    /// The residual (`= 0`).
+    pub residual: Id,
+    /// How it reads in messages.
+    pub text: String,
+    /// The equation it is the time derivative of, if differentiated.
+    pub derivative_of: Option<usize>,
+}
+
+/// The index-reduced system with its state selection.
+#[derive(Clone, Debug)]
+pub(crate) struct Reduced {
+    pub slots: Vec<Slot>,
+    pub slot_of: HashMap<Id, usize>,
+    pub var_diff: Vec<Option<usize>>,
+    pub equations: Vec<ReducedEquation>,
+    pub states: Vec<usize>,
+    pub dummy: Vec<bool>,
+    pub n_original: usize,
+    pub warnings: Vec<String>,
+}
+
+/// Applies the derivative aliases to an expression (`der(x) -> v`).
+pub(crate) fn canonical(arena: &mut Arena, e: Id, derivative_map: &HashMap<Id, Id>) -> Id {
+    if derivative_map.is_empty() {
+        e
+    } else {
+        arena.substitute(e, derivative_map)
+    }
+}
+
+/// The canonical time derivative of a leaf.
+fn leaf_derivative(arena: &mut Arena, leaf: Id, dmap: &HashMap<Id, Id>) -> Id {
+    let d = arena.der(leaf);
+    canonical(arena, d, dmap)
+}
+
+/// Builds slots for the leaves of the equations and for every kept variable.
+pub(crate) struct SlotTable<'a> {
+    pub arena: &'a mut Arena,
+    pub names: &'a [String],
+    pub slots: Vec<Slot>,
+    pub slot_of: HashMap<Id, usize>,
+}
+
+impl SlotTable<'_> {
+    /// The slot of a leaf (`Var` or `Der`), creating it and its lower-order chain.
+    pub fn slot(&mut self, leaf: Id) -> usize {
+        if let Some(&s) = self.slot_of.get(&leaf) {
+            return s;
+        }
+        let (var, order) = match self.arena.node(leaf).clone() {
+            Node::Var(i) => (i as usize, 0),
+            Node::Der(inner) => {
+                let below = self.slot(inner);
+                (self.slots[below].var, self.slots[below].order + 1)
+            }
+            n => panic!("slot of a non-variable leaf {n:?}"),
+        };
+        let base = &self.names[var];
+        let name = match self.arena.node(leaf) {
+            Node::Var(_) => base.clone(),
+            _ => {
+                let inner = match self.arena.node(leaf) {
+                    Node::Der(i) => *i,
+                    _ => unreachable!(),
+                };
+                format!("der({})", self.slots[self.slot_of[&inner]].name)
+            }
+        };
+        let s = self.slots.len();
+        self.slots.push(Slot {
+            leaf,
+            var,
+            order,
+            name,
+        });
+        self.slot_of.insert(leaf, s);
+        s
+    }
+}
+
+/// Variables of a residual as slots (`Var` and `der` leaves; parameters and time are
+/// known).
+pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {
+    let leaves: Vec<Id> = table
+        .arena
+        .leaves(e)
+        .into_iter()
+        .filter(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)))
+        .collect();
+    let mut out: Vec<usize> = leaves.into_iter().map(|l| table.slot(l)).collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Inputs of the reduction.
+pub(crate) struct ReduceInput<'a> {
+    pub arena: &'a mut Arena,
+    /// Flat variable names.
+    pub names: &'a [String],
+    /// State priority and whether each flat variable is kept (not eliminated).
+    pub priority: &'a [f64],
+    pub kept: &'a [bool],
+    /// Derivative aliases `der(x) -> v`.
+    pub derivative_map: &'a HashMap<Id, Id>,
+    /// Equations: residual and text.
+    pub equations: Vec<(Id, String)>,
+}
+
+/// Runs index reduction and state selection.
+pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, SimplifyError> {
+    let ReduceInput {
+        arena,
+        names,
+        priority,
+        kept,
+        derivative_map,
+        equations,
+    } = input;
+    let mut table = SlotTable {
+        arena,
+        names,
+        slots: Vec::new(),
+        slot_of: HashMap::new(),
+    };
+    for (i, &k) in kept.iter().enumerate() {
+        if k {
+            let leaf = table.arena.var(i as u32);
+            table.slot(leaf);
+        }
+    }
+    let mut eqs: Vec<ReducedEquation> = equations
+        .into_iter()
+        .map(|(residual, text)| ReducedEquation {
+            residual,
+            text,
+            derivative_of: None,
+        })
+        .collect();
+    let mut graph = BipartiteGraph::new(0);
+    for eq in &eqs {
+        let inc = incidence(&mut table, eq.residual);
+        graph.add_equation(inc);
+    }
+    let n_slots = table.slots.len();
+    graph.n_vars = n_slots;
+    let var_diff = derivative_links(&mut table, derivative_map);
+    let red = match pantelides(&graph, &var_diff) {
+        Ok(r) => r,
+        Err(StructurallySingular {
+            equations,
+            overdetermined,
+            undetermined,
+        }) => {
+            let names = |vs: &[usize]| -> Vec<String> {
+                vs.iter().map(|&v| table.slots[v].name.clone()).collect()
+            };
+            return Err(SimplifyError::singular(
+                model,
+                equations.iter().map(|&e| eqs[e].text.clone()).collect(),
+                names(&overdetermined),
+                names(&undetermined),
+            ));
+        }
+    };
+    // New derivative slots.
+    let anti = red.antiderivative_var();
+    for s in n_slots..red.var_diff.len() {
+        let a = anti[s].expect("a new slot is a derivative");
+        let leaf = leaf_derivative(table.arena, table.slots[a].leaf, derivative_map);
+        let got = table.slot(leaf);
+        debug_assert_eq!(got, s, "derivative slots are created in order");
+    }
+    // Differentiate the marked equations.
+    let n_original = eqs.len();
+    let anti_eq = red.antiderivative_eq();
+    let mut warnings = Vec::new();
+    for e in n_original..red.graph.n_eqs() {
+        let src = anti_eq[e].expect("a new equation is a derivative");
+        let d = table.arena.time_derivative(eqs[src].residual);
+        let d = canonical(table.arena, d, derivative_map);
+        let text = format!("d/dt[{}]", eqs[src].text);
+        let before = table.slots.len();
+        let _ = incidence(&mut table, d);
+        if table.slots.len() != before {
+            warnings.push(format!(
+                "index reduction: differentiating `{}` introduced unexpected derivatives",
+                eqs[src].text
+            ));
+        }
+        eqs.push(ReducedEquation {
+            residual: d,
+            text,
+            derivative_of: Some(src),
+        });
+    }
+    let mut var_diff = red.var_diff.clone();
+    var_diff.resize(table.slots.len(), None);
+    // State selection.
+    let rank: Vec<StateRank> = table
+        .slots
+        .iter()
+        .map(|s| StateRank {
+            priority: priority[s.var],
+            declaration: s.var,
+        })
+        .collect();
+    let mut red = red;
+    red.var_diff = var_diff.clone();
+    red.graph.n_vars = table.slots.len();
+    let selection = match dummy_derivatives(&red, n_original, &rank) {
+        Ok(s) => s,
+        Err(SelectionError::Singular {
+            equations,
+            candidates,
+        }) => {
+            return Err(SimplifyError::singular(
+                model,
+                equations.iter().map(|&e| eqs[e].text.clone()).collect(),
+                candidates
+                    .iter()
+                    .map(|&v| table.slots[v].name.clone())
+                    .collect(),
+                Vec::new(),
+            ));
+        }
+        Err(SelectionError::AlwaysViolated(slots)) => {
+            return Err(SimplifyError::StateSelection {
+                model: model.to_string(),
+                message: format!(
+                    "{} must be states (state_select = always), but the constraints of the \
+                     model leave fewer degrees of freedom",
+                    slots
+                        .iter()
+                        .map(|&v| format!("`{}`", table.slots[v].name))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        }
+    };
+    for level in &selection.levels {
+        if level.candidates.len() > level.equations.len() {
+            let varying = level.equations.iter().any(|&e| {
+                level.dummies.iter().any(|&v| {
+                    let leaf = table.slots[v].leaf;
+                    let c = table.arena.diff(eqs[e].residual, leaf);
+                    table
+                        .arena
+                        .leaves(c)
+                        .iter()
+                        .any(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)))
+                })
+            });
+            if varying {
+                let names = |vs: &[usize]| {
+                    vs.iter()
+                        .map(|&v| table.slots[v].name.clone())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                let msg = format!(
+                    "static state selection: {} chosen as dummy derivatives among the \
+                     candidates {} for {}; the choice depends on the configuration and may \
+                     become singular during the motion (give the intended states a higher \
+                     state_priority)",
+                    names(&level.dummies),
+                    names(&level.candidates),
+                    level
+                        .equations
+                        .iter()
+                        .map(|&e| format!("`{}`", eqs[e].text))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+                log::warn!("{msg}");
+                warnings.push(msg);
+            }
+        }
+    }
+    let mut dummy = selection.dummy.clone();
+    dummy.resize(table.slots.len(), false);
+    Ok(Reduced {
+        slots: table.slots,
+        slot_of: table.slot_of,
+        var_diff,
+        equations: eqs,
+        states: selection.states,
+        dummy,
+        n_original,
+        warnings,
+    })
+}
+
+/// `var_diff` from the leaves: a slot's derivative is the slot of its canonical time
+/// derivative, when that exists.
+fn derivative_links(table: &mut SlotTable<'_>, dmap: &HashMap<Id, Id>) -> Vec<Option<usize>> {
+    let n = table.slots.len();
+    let mut var_diff = vec![None; n];
+    for (s, vd) in var_diff.iter_mut().enumerate() {
+        let d = leaf_derivative(table.arena, table.slots[s].leaf, dmap);
+        *vd = table.slot_of.get(&d).copied();
+    }
+    var_diff
+}

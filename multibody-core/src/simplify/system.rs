@@ -1,0 +1,327 @@
+//! The simplified system: unknowns, mass matrix, residuals, observed variables and the
+//! compiled functions, with a translation report.
+
+use std::collections::HashMap;
+use std::fmt;
+
+use crate::codegen::dae::CompiledDae;
+use crate::expr::{Arena, Id, NameResolver};
+use crate::model::{Parameter, Variable};
+
+use super::causalize::{BlockInfo, BlockKind, Schedule};
+use super::reduce::{ReducedEquation, Slot};
+
+/// A row of the DAE residual.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ResidualRow {
+    /// The residual of an equation (iteration block).
+    Equation {
+        /// The expression.
+        residual: Id,
+        /// The reduced equation it comes from.
+        equation: usize,
+    },
+    /// `u'[state] - value`: the derivative of a state is computed as `value` (a leaf).
+    StateDerivative {
+        /// Index in the unknowns of the state.
+        state: usize,
+        /// The leaf holding the computed derivative.
+        value: Id,
+    },
+}
+
+/// Times of the phases of model compilation, in seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseTimes {
+    /// Flattening and the balance check.
+    pub flatten_s: f64,
+    /// Alias elimination, index reduction, state selection, sorting and tearing.
+    pub simplify_s: f64,
+    /// Building the residual, Jacobian and observed functions.
+    pub codegen_s: f64,
+}
+
+/// Dymola-style translation statistics.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Statistics {
+    /// Scalar equations of the flat model.
+    pub flat_equations: usize,
+    /// Scalar unknowns of the flat model.
+    pub flat_unknowns: usize,
+    /// Unknowns removed by alias elimination (`a = ±b`, `a = constant`).
+    pub alias_variables: usize,
+    /// Variables made the derivative of another (`der(x) = v`).
+    pub derivative_aliases: usize,
+    /// Equations added by index reduction (time derivatives).
+    pub differentiated_equations: usize,
+    /// Dummy derivatives chosen by state selection.
+    pub dummy_derivatives: usize,
+    /// Equations of the sorted system (after index reduction).
+    pub sorted_equations: usize,
+    /// Continuous states.
+    pub states: usize,
+    /// Algebraic unknowns of the DAE (iteration variables left to the solver).
+    pub algebraic: usize,
+    /// Unknowns solved by explicit assignments.
+    pub assignments: usize,
+    /// Linear blocks solved inside: (size, tearing variables).
+    pub linear_inline: Vec<(usize, usize)>,
+    /// Linear blocks left to the solver: sizes.
+    pub linear_solver: Vec<usize>,
+    /// Nonlinear blocks: (size, tearing variables).
+    pub nonlinear: Vec<(usize, usize)>,
+    /// Compilation times.
+    pub times: PhaseTimes,
+}
+
+impl Statistics {
+    pub(crate) fn blocks(&mut self, blocks: &[BlockInfo]) {
+        for b in blocks {
+            match b.kind {
+                BlockKind::Explicit => {}
+                BlockKind::LinearInline => self.linear_inline.push((b.size, b.torn)),
+                BlockKind::LinearSolver => self.linear_solver.push(b.size),
+                BlockKind::Nonlinear => self.nonlinear.push((b.size, b.torn)),
+            }
+        }
+    }
+}
+
+fn sizes(v: &[(usize, usize)], after: bool) -> String {
+    if v.is_empty() {
+        return "none".into();
+    }
+    let mut s: Vec<usize> = v.iter().map(|p| if after { p.1 } else { p.0 }).collect();
+    s.sort_unstable_by(|a, b| b.cmp(a));
+    let shown: Vec<String> = s.iter().take(12).map(|x| x.to_string()).collect();
+    let more = if s.len() > 12 {
+        format!(", ... ({} more)", s.len() - 12)
+    } else {
+        String::new()
+    };
+    format!("{{{}{}}}", shown.join(", "), more)
+}
+
+impl fmt::Display for Statistics {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "Translated model:")?;
+        writeln!(
+            f,
+            "  flat model: {} scalar equations, {} scalar unknowns",
+            self.flat_equations, self.flat_unknowns
+        )?;
+        writeln!(
+            f,
+            "  alias elimination: {} unknowns removed, {} derivative aliases",
+            self.alias_variables, self.derivative_aliases
+        )?;
+        writeln!(
+            f,
+            "  index reduction: {} equations differentiated, {} dummy derivatives",
+            self.differentiated_equations, self.dummy_derivatives
+        )?;
+        writeln!(
+            f,
+            "  sorted system: {} equations; {} continuous states, {} algebraic unknowns, {} explicit assignments",
+            self.sorted_equations, self.states, self.algebraic, self.assignments
+        )?;
+        writeln!(
+            f,
+            "  linear systems solved inside: sizes {} before and {} after tearing",
+            sizes(&self.linear_inline, false),
+            sizes(&self.linear_inline, true)
+        )?;
+        let solver: Vec<(usize, usize)> = self.linear_solver.iter().map(|&s| (s, s)).collect();
+        writeln!(
+            f,
+            "  linear systems left to the solver: sizes {}",
+            sizes(&solver, false)
+        )?;
+        writeln!(
+            f,
+            "  nonlinear systems: sizes {} before and {} after tearing",
+            sizes(&self.nonlinear, false),
+            sizes(&self.nonlinear, true)
+        )?;
+        write!(
+            f,
+            "  times: flatten {:.3} ms, simplify {:.3} ms, codegen {:.3} ms",
+            self.times.flatten_s * 1e3,
+            self.times.simplify_s * 1e3,
+            self.times.codegen_s * 1e3
+        )
+    }
+}
+
+/// A model reduced to unknowns `u` (states and algebraic unknowns), a diagonal mass
+/// matrix and residuals `0 = F(t, u, u')`, with every eliminated variable kept as an
+/// observed expression and the compiled functions ready for a
+/// [`DaeProblem`](crate::solve::DaeProblem).
+#[derive(Clone, Debug)]
+pub struct SimplifiedSystem {
+    pub(crate) name: String,
+    pub(crate) arena: Arena,
+    pub(crate) variables: Vec<Variable>,
+    pub(crate) parameters: Vec<Parameter>,
+    /// Parameter bindings (expressions of other parameters) per parameter.
+    pub(crate) parameter_values: Vec<Option<Id>>,
+    /// Start values per flat variable (expressions of parameters).
+    pub(crate) starts: Vec<Option<Id>>,
+    /// Per flat variable: its replacement when alias elimination removed it.
+    pub(crate) replaced: Vec<Option<Id>>,
+    pub(crate) slots: Vec<Slot>,
+    pub(crate) slot_of: HashMap<Id, usize>,
+    pub(crate) var_diff: Vec<Option<usize>>,
+    pub(crate) equations: Vec<ReducedEquation>,
+    pub(crate) initial_equations: Vec<(Id, String)>,
+    /// Slots that are states.
+    pub(crate) states: Vec<usize>,
+    /// The unknowns: leaves (state slots and iteration variables), in order.
+    pub(crate) unknowns: Vec<Id>,
+    pub(crate) mass_matrix_diagonal: Vec<f64>,
+    pub(crate) schedule: Schedule,
+    pub(crate) rows: Vec<ResidualRow>,
+    /// Leaves read from `u'` (derivatives of states that are iteration variables):
+    /// (leaf, index in `u`).
+    pub(crate) derivative_inputs: Vec<(Id, usize)>,
+    /// First variable index free for temporaries.
+    pub(crate) next_temporary: u32,
+    pub(crate) compiled: CompiledDae,
+    pub(crate) statistics: Statistics,
+    pub(crate) warnings: Vec<String>,
+}
+
+impl SimplifiedSystem {
+    /// The model's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Names of the unknowns `u`, in order: position-level states, algebraic unknowns,
+    /// velocity-level states.
+    pub fn unknowns(&self) -> Vec<String> {
+        self.unknowns.iter().map(|&l| self.leaf_name(l)).collect()
+    }
+
+    /// Names of the continuous states, in the order of [`unknowns`](Self::unknowns).
+    pub fn states(&self) -> Vec<String> {
+        self.unknowns
+            .iter()
+            .zip(&self.mass_matrix_diagonal)
+            .filter(|(_, m)| **m == 1.0)
+            .map(|(&l, _)| self.leaf_name(l))
+            .collect()
+    }
+
+    /// The diagonal of the mass matrix: 1 for a differential unknown, 0 for an
+    /// algebraic one.
+    pub fn mass_matrix_diagonal(&self) -> &[f64] {
+        &self.mass_matrix_diagonal
+    }
+
+    /// The residual equations `0 = F(t, u, u')` as text, one per unknown.
+    pub fn equations(&self) -> Vec<String> {
+        let names = self.resolver();
+        self.rows
+            .iter()
+            .map(|r| match r {
+                ResidualRow::Equation { residual, .. } => {
+                    format!("0 = {}", self.arena.display(*residual, &names))
+                }
+                ResidualRow::StateDerivative { state, value } => format!(
+                    "der({}) = {}",
+                    self.leaf_name(self.unknowns[*state]),
+                    self.arena.display(*value, &names)
+                ),
+            })
+            .collect()
+    }
+
+    /// Every variable of the model that is not an unknown, with the expression or
+    /// equation that computes it: `(name, how)`.
+    pub fn observed(&self) -> Vec<(String, String)> {
+        let names = self.resolver();
+        let mut out = Vec::new();
+        for (i, v) in self.variables.iter().enumerate() {
+            if let Some(r) = self.replaced[i] {
+                out.push((v.name.clone(), self.arena.display(r, &names)));
+            }
+        }
+        for step in &self.schedule.steps {
+            match step {
+                super::causalize::Step::Assign {
+                    target,
+                    expr,
+                    equation,
+                } if *equation != usize::MAX => {
+                    out.push((self.leaf_name(*target), self.arena.display(*expr, &names)));
+                }
+                super::causalize::Step::LinearSolve { targets, .. } => {
+                    for &t in targets {
+                        if self.slot_of.contains_key(&t) {
+                            out.push((self.leaf_name(t), "linear system".into()));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// The translation statistics.
+    pub fn statistics(&self) -> &Statistics {
+        &self.statistics
+    }
+
+    /// Warnings found while simplifying (for example about state selection).
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// Names of the tunable parameters.
+    pub fn parameters(&self) -> Vec<String> {
+        self.parameters.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// Names of every variable that a solution can return: the model's variables and
+    /// the derivatives that the reduced system contains (`der(j1.w)`).
+    pub fn variable_names(&self) -> Vec<String> {
+        self.compiled.observed_names.clone()
+    }
+
+    pub(crate) fn leaf_name(&self, leaf: Id) -> String {
+        match self.slot_of.get(&leaf) {
+            Some(&s) => self.slots[s].name.clone(),
+            None => self.arena.display(leaf, &self.resolver()),
+        }
+    }
+
+    pub(crate) fn resolver(&self) -> SystemNames<'_> {
+        SystemNames {
+            variables: &self.variables,
+            parameters: &self.parameters,
+        }
+    }
+}
+
+/// Names of the leaves of a simplified system.
+pub(crate) struct SystemNames<'a> {
+    variables: &'a [Variable],
+    parameters: &'a [Parameter],
+}
+
+impl NameResolver for SystemNames<'_> {
+    fn var(&self, i: u32) -> String {
+        match self.variables.get(i as usize) {
+            Some(v) => v.name.clone(),
+            None => format!("_tmp{i}"),
+        }
+    }
+    fn param(&self, i: u32) -> String {
+        match self.parameters.get(i as usize) {
+            Some(p) => p.name.clone(),
+            None => format!("_start{}", i as usize - self.parameters.len()),
+        }
+    }
+}

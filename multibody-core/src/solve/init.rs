@@ -1,0 +1,386 @@
+//! Consistent initialization: a problem of its own at the initial time.
+//!
+//! Its unknowns are every slot of the reduced system (variables, states, derivatives,
+//! dummy derivatives) and the parameters computed at initialization (`fixed = false`).
+//! Its equations are the model's (including the differentiated ones: velocity and
+//! acceleration constraints hold at t0 too), the initial equations and the fixed start
+//! values. When they leave degrees of freedom open, the start values of states are
+//! assumed fixed (reported, like Dymola's translation log), chosen by augmenting paths
+//! so that the system stays structurally regular. The system is then sorted and torn
+//! like the DAE, and its iteration variables solved by damped Newton with the exact
+//! sparse Jacobian; other start values serve as guesses.
+
+use std::collections::{HashMap, VecDeque};
+
+use crate::codegen::dae::{DaeSpec, Row, compile_dae};
+use crate::expr::{Id, Node};
+use crate::simplify::SimplifiedSystem;
+use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
+use crate::structure::BipartiteGraph;
+use crate::structure::dm::dulmage_mendelsohn;
+use crate::structure::matching::maximum_matching;
+
+use super::error::InitError;
+use super::newton::{NewtonOptions, newton};
+
+/// Numeric inputs of an initialization.
+pub(crate) struct InitInput<'a> {
+    pub sys: &'a SimplifiedSystem,
+    pub t0: f64,
+    /// All parameter values (those computed at initialization hold their guesses).
+    pub params: Vec<f64>,
+    /// Start values per flat variable.
+    pub starts: Vec<Option<f64>>,
+    /// Whether each flat variable's start value is fixed.
+    pub fixed: Vec<bool>,
+    /// Iteration guesses per flat variable (override the start value as a guess).
+    pub guesses: Vec<Option<f64>>,
+}
+
+/// The consistent values at the initial time.
+#[derive(Clone, Debug)]
+pub(crate) struct InitResult {
+    /// Value of each slot.
+    pub slot_values: Vec<f64>,
+    /// All parameter values, the computed ones included.
+    pub params: Vec<f64>,
+    /// Start values assumed fixed to complete the initial conditions.
+    pub assumed: Vec<(String, f64)>,
+    /// Newton iterations.
+    pub iterations: usize,
+}
+
+/// Finds consistent initial values.
+pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
+    let sys = input.sys;
+    let model = sys.name.clone();
+    let mut arena = sys.arena.clone();
+    let np = sys.parameters.len();
+    let nv = sys.variables.len();
+    let start_leaf: Vec<Id> = (0..nv).map(|i| arena.param((np + i) as u32)).collect();
+
+    // Unknowns: slots, then parameters computed at initialization.
+    let mut unknowns: Vec<Id> = sys.slots.iter().map(|s| s.leaf).collect();
+    let free_params: Vec<usize> = (0..np).filter(|&j| !sys.parameters[j].fixed).collect();
+    for &j in &free_params {
+        unknowns.push(arena.param(j as u32));
+    }
+    let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(k, &l)| (l, k)).collect();
+
+    // Mandatory equations.
+    let mut eqs: Vec<(Id, String)> = sys
+        .equations
+        .iter()
+        .map(|e| (e.residual, e.text.clone()))
+        .collect();
+    for (r, text) in &sys.initial_equations {
+        for l in arena.leaves(*r) {
+            if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains_key(&l) {
+                return Err(InitError::BadValue {
+                    model,
+                    message: format!(
+                        "the initial equation `{text}` uses `{}`, which the reduced model does \
+                         not contain",
+                        arena.display(l, &sys.resolver())
+                    ),
+                });
+            }
+        }
+        eqs.push((*r, format!("initial equation {text}")));
+    }
+    let mut implied: Vec<(usize, Id)> = Vec::new();
+    for i in 0..nv {
+        if !input.fixed[i] {
+            continue;
+        }
+        let value = match sys.replaced[i] {
+            Some(r) => r,
+            None => arena.var(i as u32),
+        };
+        let has_unknown = arena.leaves(value).iter().any(|l| index.contains_key(l));
+        if !has_unknown {
+            implied.push((i, value));
+            continue;
+        }
+        let r = arena.sub(value, start_leaf[i]);
+        eqs.push((r, format!("fixed start value of {}", sys.variables[i].name)));
+    }
+
+    // Structure: mandatory equations must be matchable.
+    let incidence = |arena: &crate::expr::Arena, r: Id| -> Vec<usize> {
+        arena
+            .leaves(r)
+            .into_iter()
+            .filter_map(|l| index.get(&l).copied())
+            .collect()
+    };
+    let mut graph = BipartiteGraph::new(unknowns.len());
+    for (r, _) in &eqs {
+        graph.add_equation(incidence(&arena, *r));
+    }
+    let m = maximum_matching(&graph, None, None);
+    if m.size() < eqs.len() {
+        let dm = dulmage_mendelsohn(&graph, &m, None);
+        let list = if dm.over_eqs.is_empty() {
+            dm.unmatched_eqs
+        } else {
+            dm.over_eqs
+        };
+        return Err(InitError::OverDetermined {
+            model,
+            equations: list.iter().map(|&e| eqs[e].1.clone()).collect(),
+        });
+    }
+    let mut var_to_eq = m.var_to_eq.clone();
+    let mut eq_to_var = m.eq_to_var.clone();
+
+    // Complete with start values of states, by augmenting paths.
+    let mut assumed = Vec::new();
+    let mut candidates: Vec<usize> = sys.states.clone();
+    let has_start = |s: usize| {
+        let slot = &sys.slots[s];
+        slot.order == 0 && input.starts[slot.var].is_some()
+    };
+    candidates.sort_by(|&a, &b| {
+        has_start(b)
+            .cmp(&has_start(a))
+            .then(
+                sys.variables[sys.slots[b].var]
+                    .state_priority
+                    .total_cmp(&sys.variables[sys.slots[a].var].state_priority),
+            )
+            .then(a.cmp(&b))
+    });
+    let mut deficiency = unknowns.len() - eqs.len();
+    for s in candidates {
+        if deficiency == 0 {
+            break;
+        }
+        let slot = &sys.slots[s];
+        let k = index[&slot.leaf];
+        graph.eq_vars.push(vec![k]);
+        let e_new = graph.eq_vars.len() - 1;
+        eq_to_var.push(None);
+        if augment(&graph.eq_vars, e_new, &mut var_to_eq, &mut eq_to_var) {
+            let value = if slot.order == 0 {
+                input.starts[slot.var].unwrap_or(0.0)
+            } else {
+                0.0
+            };
+            let r = if slot.order == 0 {
+                arena.sub(slot.leaf, start_leaf[slot.var])
+            } else {
+                slot.leaf
+            };
+            eqs.push((r, format!("assumed start value of {}", slot.name)));
+            assumed.push((slot.name.clone(), value));
+            deficiency -= 1;
+        } else {
+            eq_to_var.pop();
+            graph.eq_vars.pop();
+        }
+    }
+    if deficiency > 0 {
+        let m = maximum_matching(&graph, None, None);
+        let dm = dulmage_mendelsohn(&graph, &m, None);
+        return Err(InitError::UnderDetermined {
+            model,
+            variables: dm
+                .unmatched_vars
+                .iter()
+                .map(|&k| init_name(sys, &arena, unknowns[k]))
+                .collect(),
+        });
+    }
+    for (name, value) in &assumed {
+        log::info!("initialization of `{model}`: assuming the start value {name} = {value}");
+    }
+
+    // Sort, tear and compile the initialization system.
+    let residuals: Vec<Id> = eqs.iter().map(|e| e.0).collect();
+    let mut temps = Temporaries {
+        next: sys.next_temporary,
+    };
+    let schedule = causalize(
+        &mut arena,
+        &residuals,
+        &unknowns,
+        LinearBlockLimits::default(),
+        &mut temps,
+    )
+    .map_err(|s| InitError::OverDetermined {
+        model: model.clone(),
+        equations: s.over_equations.iter().map(|&e| eqs[e].1.clone()).collect(),
+    })?;
+    let rows: Vec<Row> = schedule
+        .residuals
+        .iter()
+        .map(|&(r, _)| Row::Expr(r))
+        .collect();
+    let observed: Vec<(String, Id)> = unknowns.iter().map(|&l| (String::new(), l)).collect();
+    let compiled = compile_dae(
+        &mut arena,
+        &DaeSpec {
+            steps: &schedule.steps,
+            unknowns: &schedule.iteration,
+            derivative_inputs: &[],
+            rows: &rows,
+            observed: &observed,
+            n_params: np + nv,
+        },
+    )
+    .map_err(|e| InitError::BadValue {
+        model: model.clone(),
+        message: format!("compiling the initialization failed: {e}"),
+    })?;
+    let layout = compiled.layout;
+    let mut inputs = vec![0.0; layout.len()];
+    inputs[crate::codegen::dae::InputLayout::TIME] = input.t0;
+    for j in 0..np {
+        inputs[layout.param(j)] = input.params[j];
+    }
+    for i in 0..nv {
+        inputs[layout.param(np + i)] = input.starts[i].unwrap_or(0.0);
+    }
+    for (k, &l) in schedule.iteration.iter().enumerate() {
+        inputs[layout.u(k)] = guess(sys, &input, &arena, l);
+    }
+    let outcome = newton(
+        &compiled.residual,
+        &compiled.jacobian,
+        &mut inputs,
+        layout.u(0),
+        NewtonOptions::default(),
+    );
+    if !outcome.converged {
+        let mut worst: Vec<(usize, f64)> = outcome.residuals.iter().copied().enumerate().collect();
+        worst.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+        let residuals = worst
+            .iter()
+            .take(6)
+            .map(|&(k, r)| (eqs[schedule.residuals[k].1].1.clone(), r.abs()))
+            .collect();
+        let variables = schedule
+            .iteration
+            .iter()
+            .enumerate()
+            .take(16)
+            .map(|(k, &l)| (init_name(sys, &arena, l), inputs[layout.u(k)]))
+            .collect();
+        log::debug!("initialization of `{model}` failed: {}", outcome.reason);
+        return Err(InitError::NotConverged {
+            model,
+            iterations: outcome.iterations,
+            residuals,
+            variables,
+        });
+    }
+    let mut values = vec![0.0; unknowns.len()];
+    let mut ws = compiled.observed.workspace();
+    compiled
+        .observed
+        .eval(&inputs, &mut ws, &mut values)
+        .map_err(|e| InitError::BadValue {
+            model: model.clone(),
+            message: format!("evaluating the initial values failed: {}", e.message),
+        })?;
+    let n_slots = sys.slots.len();
+    let mut params = input.params.clone();
+    for (k, &j) in free_params.iter().enumerate() {
+        params[j] = values[n_slots + k];
+    }
+    // Fixed start values of variables the model determines without unknowns.
+    for (i, value) in implied {
+        let v = arena.eval(value, &|n: &Node| match n {
+            Node::Param(j) => params.get(*j as usize).copied(),
+            _ => None,
+        });
+        let start = input.starts[i].unwrap_or(0.0);
+        if let Some(v) = v
+            && (v - start).abs() > 1e-8 * (1.0 + v.abs())
+        {
+            return Err(InitError::Inconsistent {
+                model,
+                variable: sys.variables[i].name.clone(),
+                start,
+                value: v,
+            });
+        }
+    }
+    values.truncate(n_slots);
+    Ok(InitResult {
+        slot_values: values,
+        params,
+        assumed,
+        iterations: outcome.iterations,
+    })
+}
+
+/// A readable name for an unknown of the initialization system.
+fn init_name(sys: &SimplifiedSystem, arena: &crate::expr::Arena, l: Id) -> String {
+    match sys.slot_of.get(&l) {
+        Some(&s) => sys.slots[s].name.clone(),
+        None => arena.display(l, &sys.resolver()),
+    }
+}
+
+/// The first guess of an iteration variable: its guess, its start value, or 0.
+fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Arena, l: Id) -> f64 {
+    if let Some(&s) = sys.slot_of.get(&l) {
+        let slot = &sys.slots[s];
+        if slot.order == 0 {
+            return input.guesses[slot.var]
+                .or(input.starts[slot.var])
+                .unwrap_or(0.0);
+        }
+        return 0.0;
+    }
+    if let Node::Param(j) = arena.node(l) {
+        return input.params.get(*j as usize).copied().unwrap_or(0.0);
+    }
+    0.0
+}
+
+/// Augments the matching along an alternating path from the unmatched equation `root`.
+fn augment(
+    adj: &[Vec<usize>],
+    root: usize,
+    var_to_eq: &mut [Option<usize>],
+    eq_to_var: &mut [Option<usize>],
+) -> bool {
+    let mut parent: HashMap<usize, usize> = HashMap::new(); // var -> equation reaching it
+    let mut queue = VecDeque::new();
+    queue.push_back(root);
+    let mut seen_eq = std::collections::HashSet::new();
+    seen_eq.insert(root);
+    while let Some(e) = queue.pop_front() {
+        for &v in &adj[e] {
+            if parent.contains_key(&v) {
+                continue;
+            }
+            parent.insert(v, e);
+            match var_to_eq[v] {
+                None => {
+                    // Flip back to the root.
+                    let mut v = v;
+                    loop {
+                        let e = parent[&v];
+                        let prev = eq_to_var[e];
+                        eq_to_var[e] = Some(v);
+                        var_to_eq[v] = Some(e);
+                        match prev {
+                            Some(pv) if e != root => v = pv,
+                            _ => return true,
+                        }
+                    }
+                }
+                Some(e2) => {
+                    if seen_eq.insert(e2) {
+                        queue.push_back(e2);
+                    }
+                }
+            }
+        }
+    }
+    false
+}

@@ -1,0 +1,63 @@
+//! Options of the integrator.
+
+/// Which linear solver IDA's Newton iteration uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LinearSolverChoice {
+    /// Dense for up to 24 unknowns, faer's sparse LU above (the default).
+    #[default]
+    Auto,
+    /// SUNDIALS' dense LU with the compiled Jacobian.
+    Dense,
+    /// faer's sparse LU with the compiled sparse Jacobian.
+    Sparse,
+    /// SUNDIALS' dense LU with IDA's difference-quotient Jacobian (for comparisons).
+    DenseDifferenceQuotient,
+}
+
+/// Options of [`DaeProblem::solve`](super::DaeProblem::solve).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolverOptions {
+    /// Relative tolerance (default 1e-6).
+    pub rtol: f64,
+    /// Absolute tolerance (default 1e-8).
+    pub atol: f64,
+    /// Largest step size (default: none).
+    pub max_step: Option<f64>,
+    /// First step size (default: IDA's estimate).
+    pub initial_step: Option<f64>,
+    /// Times at which to report the solution (default: none, every internal step is
+    /// reported; the final time is always reported).
+    pub output_times: Option<Vec<f64>>,
+    /// Largest number of reported points, and of internal steps between two output
+    /// times (default 500 000).
+    pub max_steps: usize,
+    /// Leave algebraic unknowns out of the local error test, as `IDASetSuppressAlg`
+    /// (default true).
+    pub suppress_alg: bool,
+    /// The linear solver (default [`LinearSolverChoice::Auto`]).
+    pub linear_solver: LinearSolverChoice,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            rtol: 1e-6,
+            atol: 1e-8,
+            max_step: None,
+            initial_step: None,
+            output_times: None,
+            max_steps: 500_000,
+            suppress_alg: true,
+            linear_solver: LinearSolverChoice::Auto,
+        }
+    }
+}
+
+impl SolverOptions {
+    /// Output times `t0, t0 + dt, ...` up to `t1` (inclusive within rounding).
+    pub fn with_output_interval(mut self, t0: f64, t1: f64, dt: f64) -> Self {
+        let n = ((t1 - t0) / dt + 1e-9).floor() as usize;
+        self.output_times = Some((1..=n).map(|k| t0 + k as f64 * dt).collect());
+        self
+    }
+}

@@ -1,0 +1,456 @@
+//! A DAE problem: a simplified system with parameter values, initial values and a time
+//! span, solved by IDA.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use crate::Error;
+use crate::codegen::dae::{CompiledDae, InputLayout};
+use crate::codegen::{JacobianWorkspace, Workspace};
+use crate::expr::{Arena, Id, Node};
+use crate::names::closest;
+use crate::simplify::SimplifiedSystem;
+
+use super::error::{InitError, SolveError};
+use super::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
+use super::init::{InitInput, initialize};
+use super::options::{LinearSolverChoice, SolverOptions};
+use super::solution::Solution;
+
+/// What the initialization did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct InitReport {
+    /// Start values assumed fixed to complete the initial conditions (name, value).
+    pub assumed: Vec<(String, f64)>,
+    /// Newton iterations used.
+    pub iterations: usize,
+}
+
+/// A simplified system with values: tunable parameters, initial values and a time span.
+/// Creating one runs the consistent initialization; the compiled functions of the
+/// system are shared, so many problems of one system cost no recompilation.
+#[derive(Clone, Debug)]
+pub struct DaeProblem<'a> {
+    sys: &'a SimplifiedSystem,
+    tspan: (f64, f64),
+    params: Vec<f64>,
+    u0: Vec<f64>,
+    up0: Vec<f64>,
+    report: InitReport,
+}
+
+/// Evaluates parameter values: bindings may refer to other parameters.
+pub(crate) fn parameter_values(
+    sys: &SimplifiedSystem,
+    overrides: &HashMap<usize, f64>,
+) -> Result<Vec<f64>, InitError> {
+    let np = sys.parameters.len();
+    let mut values: Vec<Option<f64>> = vec![None; np];
+    for (&j, &v) in overrides {
+        values[j] = Some(v);
+    }
+    // Repeated sweeps: a binding is evaluated once all parameters it uses are known.
+    loop {
+        let mut progress = false;
+        let mut missing = Vec::new();
+        for j in 0..np {
+            if values[j].is_some() {
+                continue;
+            }
+            let Some(e) = sys.parameter_values[j] else {
+                // Computed at initialization with no binding: guess 0.
+                values[j] = Some(0.0);
+                progress = true;
+                continue;
+            };
+            let v = sys.arena.eval(e, &|n: &Node| match n {
+                Node::Param(k) => values.get(*k as usize).copied().flatten(),
+                _ => None,
+            });
+            match v {
+                Some(v) => {
+                    values[j] = Some(v);
+                    progress = true;
+                }
+                None => missing.push(j),
+            }
+        }
+        if missing.is_empty() {
+            break;
+        }
+        if !progress {
+            return Err(InitError::BadValue {
+                model: sys.name.clone(),
+                message: format!(
+                    "the values of {} depend on each other or on variables",
+                    missing
+                        .iter()
+                        .map(|&j| format!("`{}`", sys.parameters[j].name))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        }
+    }
+    Ok(values.into_iter().map(|v| v.unwrap_or(0.0)).collect())
+}
+
+fn eval_with_params(arena: &Arena, e: Id, params: &[f64]) -> Option<f64> {
+    arena.eval(e, &|n: &Node| match n {
+        Node::Param(k) => params.get(*k as usize).copied(),
+        Node::Time => None,
+        _ => None,
+    })
+}
+
+impl<'a> DaeProblem<'a> {
+    /// A problem over `tspan` with `values`: a parameter name sets that parameter; a
+    /// variable name sets its start value and makes it fixed (an initial condition).
+    /// Everything else keeps the model's defaults. Runs the initialization.
+    pub fn new(
+        sys: &'a SimplifiedSystem,
+        values: &[(&str, f64)],
+        tspan: (f64, f64),
+    ) -> Result<Self, Error> {
+        Self::new_with_guesses(sys, values, &[], tspan)
+    }
+
+    /// Like [`new`](Self::new), with iteration guesses for variables (used by the
+    /// initialization's Newton iterations only; not fixed).
+    pub fn new_with_guesses(
+        sys: &'a SimplifiedSystem,
+        values: &[(&str, f64)],
+        guesses: &[(&str, f64)],
+        tspan: (f64, f64),
+    ) -> Result<Self, Error> {
+        if !(tspan.0.is_finite() && tspan.1.is_finite() && tspan.1 > tspan.0) {
+            return Err(InitError::BadValue {
+                model: sys.name.clone(),
+                message: format!(
+                    "the time span ({}, {}) must be finite and increasing",
+                    tspan.0, tspan.1
+                ),
+            }
+            .into());
+        }
+        let var_index: HashMap<&str, usize> = sys
+            .variables
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.name.as_str(), i))
+            .collect();
+        let param_index: HashMap<&str, usize> = sys
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(j, p)| (p.name.as_str(), j))
+            .collect();
+        let unknown = |name: &str| {
+            let candidates = sys
+                .variables
+                .iter()
+                .map(|v| v.name.as_str())
+                .chain(sys.parameters.iter().map(|p| p.name.as_str()));
+            InitError::UnknownName {
+                model: sys.name.clone(),
+                name: name.to_string(),
+                suggestions: closest(name, candidates, 3),
+            }
+        };
+        let mut param_overrides = HashMap::new();
+        let mut start_overrides = HashMap::new();
+        for &(name, v) in values {
+            if let Some(&j) = param_index.get(name) {
+                param_overrides.insert(j, v);
+            } else if let Some(&i) = var_index.get(name) {
+                start_overrides.insert(i, v);
+            } else {
+                return Err(unknown(name).into());
+            }
+        }
+        let mut guess_values = vec![None; sys.variables.len()];
+        for &(name, v) in guesses {
+            match var_index.get(name) {
+                Some(&i) => guess_values[i] = Some(v),
+                None => return Err(unknown(name).into()),
+            }
+        }
+        let params = parameter_values(sys, &param_overrides)?;
+        let mut starts = Vec::with_capacity(sys.variables.len());
+        let mut fixed = Vec::with_capacity(sys.variables.len());
+        for (i, v) in sys.variables.iter().enumerate() {
+            if let Some(&s) = start_overrides.get(&i) {
+                starts.push(Some(s));
+                fixed.push(true);
+                continue;
+            }
+            let s = match sys.starts[i] {
+                Some(e) => Some(eval_with_params(&sys.arena, e, &params).ok_or_else(|| {
+                    InitError::BadValue {
+                        model: sys.name.clone(),
+                        message: format!(
+                            "the start value of `{}` is not an expression of parameters",
+                            v.name
+                        ),
+                    }
+                })?),
+                None => None,
+            };
+            starts.push(s);
+            fixed.push(v.fixed);
+        }
+        let init = initialize(InitInput {
+            sys,
+            t0: tspan.0,
+            params,
+            starts,
+            fixed,
+            guesses: guess_values,
+        })?;
+        // u0 and u'0 from the slot values.
+        let mut u0 = Vec::with_capacity(sys.unknowns.len());
+        let mut up0 = Vec::with_capacity(sys.unknowns.len());
+        for &l in &sys.unknowns {
+            let s = sys.slot_of[&l];
+            u0.push(init.slot_values[s]);
+            up0.push(sys.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
+        }
+        Ok(DaeProblem {
+            sys,
+            tspan,
+            params: init.params,
+            u0,
+            up0,
+            report: InitReport {
+                assumed: init.assumed,
+                iterations: init.iterations,
+            },
+        })
+    }
+
+    /// The consistent initial unknowns `u(t0)`, in the order of
+    /// [`SimplifiedSystem::unknowns`].
+    pub fn initial_unknowns(&self) -> &[f64] {
+        &self.u0
+    }
+
+    /// The consistent initial derivatives `u'(t0)`.
+    pub fn initial_derivatives(&self) -> &[f64] {
+        &self.up0
+    }
+
+    /// The parameter values (including those computed at initialization), in the
+    /// order of [`SimplifiedSystem::parameters`].
+    pub fn parameter_values(&self) -> &[f64] {
+        &self.params
+    }
+
+    /// What the initialization assumed and how it went.
+    pub fn init_report(&self) -> &InitReport {
+        &self.report
+    }
+
+    /// The time span.
+    pub fn tspan(&self) -> (f64, f64) {
+        self.tspan
+    }
+
+    /// The system.
+    pub fn system(&self) -> &SimplifiedSystem {
+        self.sys
+    }
+
+    /// The residual `F(t0, u0, u'0)` at the initial values (all zero when they are
+    /// consistent).
+    pub fn initial_residual(&self) -> Vec<f64> {
+        let c = &self.sys.compiled;
+        let mut f = CompiledFunctions::new(c, &self.params);
+        let mut out = vec![0.0; self.u0.len()];
+        let _ = f.residual(self.tspan.0, &self.u0, &self.up0, &mut out);
+        out
+    }
+
+    /// Integrates with IDA.
+    pub fn solve(&self, options: &SolverOptions) -> Result<Solution, Error> {
+        let sys = self.sys;
+        let c = &sys.compiled;
+        let n = self.u0.len();
+        let linear_solver = match options.linear_solver {
+            LinearSolverChoice::Auto if n <= 24 => LinearSolver::Dense,
+            LinearSolverChoice::Auto => LinearSolver::SparseLu,
+            LinearSolverChoice::Dense => LinearSolver::Dense,
+            LinearSolverChoice::Sparse => LinearSolver::SparseLu,
+            LinearSolverChoice::DenseDifferenceQuotient => LinearSolver::DenseDifferenceQuotient,
+        };
+        let settings = IdaSettings {
+            rtol: options.rtol,
+            atol: options.atol,
+            atol_vector: None,
+            max_step: options.max_step,
+            initial_step: options.initial_step,
+            max_steps: options.max_steps,
+            id: sys.mass_matrix_diagonal.clone(),
+            suppress_alg: options.suppress_alg,
+            linear_solver,
+            calc_ic: false,
+        };
+        let output = match &options.output_times {
+            Some(times) => {
+                let mut ts: Vec<f64> = times
+                    .iter()
+                    .copied()
+                    .filter(|&t| t > self.tspan.0 && t <= self.tspan.1)
+                    .collect();
+                ts.sort_by(f64::total_cmp);
+                ts.dedup();
+                if ts.last() != Some(&self.tspan.1) {
+                    ts.push(self.tspan.1);
+                }
+                OutputMode::Times(ts)
+            }
+            None => OutputMode::EveryStep {
+                t_end: self.tspan.1,
+            },
+        };
+        let mut f = CompiledFunctions::new(c, &self.params);
+        let mut t_out = Vec::new();
+        let mut u_out = Vec::new();
+        let mut up_out = Vec::new();
+        let mut steps_left = options.max_steps;
+        let mut exceeded = None;
+        let result = ida::integrate(
+            &mut f,
+            self.tspan.0,
+            &self.u0,
+            &self.up0,
+            &settings,
+            &output,
+            &mut |t, u, up| {
+                if exceeded.is_some() {
+                    return;
+                }
+                if steps_left == 0 {
+                    exceeded = Some(t);
+                    return;
+                }
+                steps_left -= 1;
+                t_out.push(t);
+                u_out.extend_from_slice(u);
+                up_out.extend_from_slice(up);
+            },
+        );
+        let stats = result.map_err(|e| SolveError {
+            model: sys.name.clone(),
+            t: e.t,
+            flag: e.flag.clone(),
+            message: e.message.clone(),
+        })?;
+        if let Some(t) = exceeded {
+            return Err(SolveError {
+                model: sys.name.clone(),
+                t,
+                flag: "MAX_STEPS".into(),
+                message: format!(
+                    "more than {} output points (SolverOptions::max_steps)",
+                    options.max_steps
+                ),
+            }
+            .into());
+        }
+        Ok(Solution::new(
+            sys.name.clone(),
+            Arc::new(c.observed.clone()),
+            Arc::new(c.observed_names.clone()),
+            c.layout,
+            self.params.clone(),
+            sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
+            t_out,
+            u_out,
+            up_out,
+            stats,
+            self.report.clone(),
+        ))
+    }
+}
+
+/// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
+pub(crate) struct CompiledFunctions<'c> {
+    c: &'c CompiledDae,
+    inputs: Vec<f64>,
+    ws: Workspace,
+    jws: JacobianWorkspace,
+    layout: InputLayout,
+}
+
+impl<'c> CompiledFunctions<'c> {
+    pub(crate) fn new(c: &'c CompiledDae, params: &[f64]) -> Self {
+        let layout = c.layout;
+        let mut inputs = vec![0.0; layout.len()];
+        for (j, &p) in params.iter().enumerate().take(layout.n_params) {
+            inputs[layout.param(j)] = p;
+        }
+        CompiledFunctions {
+            c,
+            inputs,
+            ws: c.residual.workspace(),
+            jws: c.jacobian.workspace(&c.residual),
+            layout,
+        }
+    }
+
+    fn load(&mut self, t: f64, y: &[f64], yp: &[f64]) {
+        let n = self.layout.n;
+        self.inputs[InputLayout::TIME] = t;
+        if n > 0 {
+            let u0 = self.layout.u(0);
+            self.inputs[u0..u0 + n].copy_from_slice(y);
+            let up0 = self.layout.up(0);
+            self.inputs[up0..up0 + n].copy_from_slice(yp);
+        }
+    }
+}
+
+impl DaeFunctions for CompiledFunctions<'_> {
+    fn len(&self) -> usize {
+        self.layout.n
+    }
+
+    fn residual(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        yp: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), EvalError> {
+        self.load(t, y, yp);
+        self.c.residual.eval(&self.inputs, &mut self.ws, out)?;
+        if let Some(i) = out.iter().position(|v| !v.is_finite()) {
+            return Err(EvalError {
+                message: format!("residual {i} is not finite at t = {t}"),
+                recoverable: true,
+            });
+        }
+        Ok(())
+    }
+
+    fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+        Some((
+            self.c.jacobian.col_ptr.clone(),
+            self.c.jacobian.row_idx.clone(),
+        ))
+    }
+
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        yp: &[f64],
+        cj: f64,
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        self.load(t, y, yp);
+        self.c
+            .jacobian
+            .eval(&self.c.residual, &self.inputs, cj, &mut self.jws, values)
+    }
+}

@@ -1,0 +1,296 @@
+//! The solution of a DAE problem: any variable of the model by name, at the output
+//! times or interpolated at any time, and CSV export.
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::Path;
+use std::sync::Arc;
+
+use crate::codegen::Tape;
+use crate::codegen::dae::InputLayout;
+use crate::names::closest;
+
+use super::error::SolutionError;
+use super::ida::IdaStats;
+use super::problem::InitReport;
+
+/// A solution: the unknowns and their derivatives at the reported times, and the
+/// compiled observed function that gives every other variable from them.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    model: String,
+    observed: Arc<Tape>,
+    names: Arc<Vec<String>>,
+    index: HashMap<String, usize>,
+    layout: InputLayout,
+    params: Vec<f64>,
+    differential: Vec<bool>,
+    t: Vec<f64>,
+    u: Vec<f64>,
+    up: Vec<f64>,
+    stats: IdaStats,
+    init: InitReport,
+}
+
+impl Solution {
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        model: String,
+        observed: Arc<Tape>,
+        names: Arc<Vec<String>>,
+        layout: InputLayout,
+        params: Vec<f64>,
+        differential: Vec<bool>,
+        t: Vec<f64>,
+        u: Vec<f64>,
+        up: Vec<f64>,
+        stats: IdaStats,
+        init: InitReport,
+    ) -> Solution {
+        let index = names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n.clone(), i))
+            .collect();
+        Solution {
+            model,
+            observed,
+            names,
+            index,
+            layout,
+            params,
+            differential,
+            t,
+            u,
+            up,
+            stats,
+            init,
+        }
+    }
+
+    /// The model's name.
+    pub fn model(&self) -> &str {
+        &self.model
+    }
+
+    /// The reported times (the initial time first, the final time last).
+    pub fn t(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// Names of every variable the solution can give.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Integrator statistics.
+    pub fn statistics(&self) -> &IdaStats {
+        &self.stats
+    }
+
+    /// What the initialization assumed.
+    pub fn init_report(&self) -> &InitReport {
+        &self.init
+    }
+
+    /// The unknowns `u` at reported point `k`.
+    pub fn unknowns_at(&self, k: usize) -> &[f64] {
+        let n = self.layout.n;
+        &self.u[k * n..(k + 1) * n]
+    }
+
+    fn lookup(&self, name: &str) -> Result<usize, SolutionError> {
+        self.index
+            .get(name)
+            .copied()
+            .ok_or_else(|| SolutionError::UnknownVariable {
+                name: name.to_string(),
+                suggestions: closest(name, self.names.iter().map(|s| s.as_str()), 3),
+            })
+    }
+
+    fn evaluate(
+        &self,
+        t: f64,
+        u: &[f64],
+        up: &[f64],
+        ws: &mut crate::codegen::Workspace,
+        inputs: &mut [f64],
+        out: &mut [f64],
+    ) {
+        let n = self.layout.n;
+        inputs[InputLayout::TIME] = t;
+        if n > 0 {
+            let u0 = self.layout.u(0);
+            inputs[u0..u0 + n].copy_from_slice(u);
+            let up0 = self.layout.up(0);
+            inputs[up0..up0 + n].copy_from_slice(up);
+        }
+        if self.observed.eval(inputs, ws, out).is_err() {
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+        }
+    }
+
+    fn inputs(&self) -> Vec<f64> {
+        let mut inputs = vec![0.0; self.layout.len()];
+        for (j, &p) in self.params.iter().enumerate().take(self.layout.n_params) {
+            inputs[self.layout.param(j)] = p;
+        }
+        inputs
+    }
+
+    /// The values of a variable at the reported times.
+    pub fn get(&self, name: &str) -> Result<Vec<f64>, SolutionError> {
+        Ok(self.get_many(&[name])?.pop().expect("one series"))
+    }
+
+    /// The values of several variables at the reported times (one evaluation of the
+    /// observed function per time for all of them).
+    pub fn get_many(&self, names: &[&str]) -> Result<Vec<Vec<f64>>, SolutionError> {
+        let idx: Vec<usize> = names
+            .iter()
+            .map(|n| self.lookup(n))
+            .collect::<Result<_, _>>()?;
+        let n = self.layout.n;
+        let mut ws = self.observed.workspace();
+        let mut inputs = self.inputs();
+        let mut out = vec![0.0; self.observed.n_outputs()];
+        let mut series = vec![Vec::with_capacity(self.t.len()); names.len()];
+        for (k, &t) in self.t.iter().enumerate() {
+            let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
+            self.evaluate(t, u, up, &mut ws, &mut inputs, &mut out);
+            for (s, &i) in series.iter_mut().zip(&idx) {
+                s.push(out[i]);
+            }
+        }
+        Ok(series)
+    }
+
+    /// The value of a variable at the final time.
+    pub fn final_value(&self, name: &str) -> Result<f64, SolutionError> {
+        let i = self.lookup(name)?;
+        let k = self.t.len() - 1;
+        let n = self.layout.n;
+        let mut ws = self.observed.workspace();
+        let mut inputs = self.inputs();
+        let mut out = vec![0.0; self.observed.n_outputs()];
+        let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
+        self.evaluate(self.t[k], u, up, &mut ws, &mut inputs, &mut out);
+        Ok(out[i])
+    }
+
+    /// The unknowns and derivatives interpolated at `t`: cubic Hermite for
+    /// differential unknowns, linear for algebraic ones.
+    fn interpolate(&self, t: f64) -> Result<(Vec<f64>, Vec<f64>), SolutionError> {
+        let (t0, t1) = (self.t[0], *self.t.last().expect("non-empty"));
+        if !(t >= t0 && t <= t1) {
+            return Err(SolutionError::OutOfRange { t, t0, t1 });
+        }
+        let n = self.layout.n;
+        let k = match self.t.partition_point(|&x| x <= t) {
+            0 => 0,
+            p => (p - 1).min(self.t.len().saturating_sub(2)),
+        };
+        if self.t.len() == 1 {
+            return Ok((self.u[..n].to_vec(), self.up[..n].to_vec()));
+        }
+        let (ta, tb) = (self.t[k], self.t[k + 1]);
+        let h = tb - ta;
+        let s = if h > 0.0 { (t - ta) / h } else { 0.0 };
+        let (ua, ub) = (
+            &self.u[k * n..(k + 1) * n],
+            &self.u[(k + 1) * n..(k + 2) * n],
+        );
+        let (pa, pb) = (
+            &self.up[k * n..(k + 1) * n],
+            &self.up[(k + 1) * n..(k + 2) * n],
+        );
+        let (s2, s3) = (s * s, s * s * s);
+        let (h00, h10, h01, h11) = (
+            2.0 * s3 - 3.0 * s2 + 1.0,
+            s3 - 2.0 * s2 + s,
+            -2.0 * s3 + 3.0 * s2,
+            s3 - s2,
+        );
+        let mut u = vec![0.0; n];
+        let mut up = vec![0.0; n];
+        for i in 0..n {
+            if self.differential[i] && h > 0.0 {
+                u[i] = h00 * ua[i] + h10 * h * pa[i] + h01 * ub[i] + h11 * h * pb[i];
+                up[i] = (6.0 * s2 - 6.0 * s) / h * ua[i]
+                    + (3.0 * s2 - 4.0 * s + 1.0) * pa[i]
+                    + (-6.0 * s2 + 6.0 * s) / h * ub[i]
+                    + (3.0 * s2 - 2.0 * s) * pb[i];
+            } else {
+                u[i] = (1.0 - s) * ua[i] + s * ub[i];
+                up[i] = (1.0 - s) * pa[i] + s * pb[i];
+            }
+        }
+        Ok((u, up))
+    }
+
+    /// The value of a variable at any time of the solved interval (interpolated).
+    pub fn at(&self, name: &str, t: f64) -> Result<f64, SolutionError> {
+        Ok(self.sample(&[name], &[t])?[0][0])
+    }
+
+    /// Several variables at several times: `result[variable][time]`.
+    pub fn sample(&self, names: &[&str], times: &[f64]) -> Result<Vec<Vec<f64>>, SolutionError> {
+        let idx: Vec<usize> = names
+            .iter()
+            .map(|n| self.lookup(n))
+            .collect::<Result<_, _>>()?;
+        let mut ws = self.observed.workspace();
+        let mut inputs = self.inputs();
+        let mut out = vec![0.0; self.observed.n_outputs()];
+        let mut series = vec![Vec::with_capacity(times.len()); names.len()];
+        for &t in times {
+            let (u, up) = self.interpolate(t)?;
+            self.evaluate(t, &u, &up, &mut ws, &mut inputs, &mut out);
+            for (s, &i) in series.iter_mut().zip(&idx) {
+                s.push(out[i]);
+            }
+        }
+        Ok(series)
+    }
+
+    /// Writes `time` and the named variables (all of them when `names` is empty) at the
+    /// reported times as CSV.
+    pub fn write_csv(&self, path: impl AsRef<Path>, names: &[&str]) -> Result<(), SolutionError> {
+        let path = path.as_ref();
+        let all: Vec<&str>;
+        let names = if names.is_empty() {
+            all = self.names.iter().map(|s| s.as_str()).collect();
+            &all[..]
+        } else {
+            names
+        };
+        let series = self.get_many(names)?;
+        let io = |e: std::io::Error| SolutionError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        };
+        let file = std::fs::File::create(path).map_err(io)?;
+        let mut w = std::io::BufWriter::new(file);
+        let header: Vec<String> = std::iter::once("time".to_string())
+            .chain(names.iter().map(|n| csv_field(n)))
+            .collect();
+        writeln!(w, "{}", header.join(",")).map_err(io)?;
+        for (k, t) in self.t.iter().enumerate() {
+            let mut line = format!("{t:e}");
+            for s in &series {
+                line.push_str(&format!(",{:e}", s[k]));
+            }
+            writeln!(w, "{line}").map_err(io)?;
+        }
+        w.flush().map_err(io)
+    }
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains(',') || s.contains('"') {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
