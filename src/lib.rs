@@ -1,1 +1,83 @@
-//! placeholder
+//! # multibody
+//!
+//! Acausal, equation-based modeling and simulation of multibody systems, with 1-D
+//! mechanics, circuits and control blocks beside them. Components are declared once
+//! with [`component!`] (parameters with defaults and docs, connectors, variables,
+//! equations like `der(phi) = w;`), models are assembled with [`system!`] (or plain
+//! builder calls), reduced by [`structural_simplify`] to states, algebraic unknowns and
+//! residuals with a mass matrix, integrated by SUNDIALS IDA, and read back by name.
+//!
+//! ```
+//! use multibody::prelude::*;
+//! use multibody::rotational::{Damper, Fixed, Inertia, Spring};
+//!
+//! let model = system! {
+//!     name: "oscillator";
+//!     fixed = Fixed::default();
+//!     spring = Spring { c: 4.0 };
+//!     damper = Damper { d: 0.4 };
+//!     inertia = Inertia { J: 1.0, phi_start: 1.0 };
+//!     connect(fixed.flange, spring.flange_a);
+//!     connect(spring.flange_b, inertia.flange_a);
+//!     connect(fixed.flange, damper.flange_a);
+//!     connect(damper.flange_b, inertia.flange_a);
+//! };
+//! let ssys = structural_simplify(&model)?;
+//! assert_eq!(ssys.states(), ["inertia.phi", "inertia.w"]);
+//! let sol = DaeProblem::new(&ssys, &[], (0.0, 10.0))?.solve(&SolverOptions::default())?;
+//! assert!(sol.final_value("inertia.phi")?.abs() < 0.02);
+//! # Ok::<(), multibody::Error>(())
+//! ```
+
+extern crate self as multibody;
+
+pub mod blocks;
+pub mod electrical;
+pub mod functions;
+pub mod rotational;
+pub mod translational;
+
+pub use multibody_core::codegen;
+pub use multibody_core::expr::Expr;
+pub use multibody_core::model::{
+    Component, Connector, ConnectorHandle, Parameter, PathId, Real, Signal, StateSelect, System,
+    TypedComponent, VarKind, Variable,
+};
+pub use multibody_core::plot::{PlotOptions, plot, plot_figure};
+pub use multibody_core::simplify::{
+    LinearBlockLimits, SimplifiedSystem, SimplifyOptions, Statistics, structural_simplify,
+    structural_simplify_with,
+};
+pub use multibody_core::solve::{
+    DaeProblem, IdaStats, InitReport, LinearSolverChoice, Solution, SolverOptions,
+};
+pub use multibody_core::{Error, model, simplify, solve, structure};
+pub use multibody_macros::{component, connector, system};
+
+/// What a model file needs: the macros, the builder types, the solver and plots, and
+/// the functions used in equations.
+pub mod prelude {
+    pub use crate::functions::*;
+    pub use crate::{
+        Component, ConnectorHandle, DaeProblem, Expr, PlotOptions, Real, Signal, SimplifiedSystem,
+        Solution, SolverOptions, StateSelect, System, TypedComponent, Variable, component,
+        connector, plot, plot_figure, structural_simplify, system,
+    };
+}
+
+/// Paths used by the code the macros generate. Not a public API.
+#[doc(hidden)]
+pub mod __private {
+    pub use multibody_core::expr::Expr;
+    pub use multibody_core::model::{
+        Component, Connector, ConnectorHandle, Parameter, ParameterType, PathId, Signal,
+        StateSelect, System, TypedComponent, VarKind, Variable, VariableType, declare_signal,
+        member, signal_at,
+    };
+
+    /// The functions equations use (`der`, `sin`, ...).
+    pub mod dsl {
+        pub use crate::functions::*;
+        pub use multibody_core::model::StateSelect;
+    }
+}

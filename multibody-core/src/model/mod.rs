@@ -5,12 +5,17 @@ mod balance;
 mod error;
 mod flatten;
 mod system;
+mod typed;
 mod variable;
 
 pub use balance::check_balance;
 pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use system::{Component, Connection, Equation, System, join_path};
+pub use typed::{
+    Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, TypedComponent,
+    VariableType, declare_signal, member, signal_at,
+};
 pub use variable::{Parameter, StateSelect, VarKind, Variable};
 
 #[cfg(test)]

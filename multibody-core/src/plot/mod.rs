@@ -22,6 +22,7 @@
 //! ```
 
 mod font;
+mod solution;
 
 use std::path::Path;
 
@@ -31,6 +32,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 pub use font::register_fonts;
+pub use solution::{plot, plot_figure};
 
 /// One curve: `y[i]` plotted against `t[i]`.
 ///

@@ -265,7 +265,6 @@ pub fn structural_simplify_with(
         mass_matrix_diagonal: mass,
         schedule,
         rows,
-        derivative_inputs,
         next_temporary: temps.next,
         compiled,
         statistics,

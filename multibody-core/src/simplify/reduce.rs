@@ -31,8 +31,6 @@ pub struct ReducedEquation {
     pub residual: Id,
     /// How it reads in messages.
     pub text: String,
-    /// The equation it is the time derivative of, if differentiated.
-    pub derivative_of: Option<usize>,
 }
 
 /// The index-reduced system with its state selection.
@@ -161,11 +159,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     }
     let mut eqs: Vec<ReducedEquation> = equations
         .into_iter()
-        .map(|(residual, text)| ReducedEquation {
-            residual,
-            text,
-            derivative_of: None,
-        })
+        .map(|(residual, text)| ReducedEquation { residual, text })
         .collect();
     let mut graph = BipartiteGraph::new(0);
     for eq in &eqs {
@@ -218,11 +212,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                 eqs[src].text
             ));
         }
-        eqs.push(ReducedEquation {
-            residual: d,
-            text,
-            derivative_of: Some(src),
-        });
+        eqs.push(ReducedEquation { residual: d, text });
     }
     let mut var_diff = red.var_diff.clone();
     var_diff.resize(table.slots.len(), None);

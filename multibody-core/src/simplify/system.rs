@@ -181,9 +181,6 @@ pub struct SimplifiedSystem {
     pub(crate) mass_matrix_diagonal: Vec<f64>,
     pub(crate) schedule: Schedule,
     pub(crate) rows: Vec<ResidualRow>,
-    /// Leaves read from `u'` (derivatives of states that are iteration variables):
-    /// (leaf, index in `u`).
-    pub(crate) derivative_inputs: Vec<(Id, usize)>,
     /// First variable index free for temporaries.
     pub(crate) next_temporary: u32,
     pub(crate) compiled: CompiledDae,

@@ -134,16 +134,31 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let mut var_to_eq = m.var_to_eq.clone();
     let mut eq_to_var = m.eq_to_var.clone();
 
-    // Complete with start values of states, by augmenting paths.
+    // Complete with start values, by augmenting paths: first states that have a start
+    // value, then other variables that have one, then the remaining states (at 0).
     let mut assumed = Vec::new();
-    let mut candidates: Vec<usize> = sys.states.clone();
+    let is_state: Vec<bool> = {
+        let mut v = vec![false; sys.slots.len()];
+        for &s in &sys.states {
+            v[s] = true;
+        }
+        v
+    };
     let has_start = |s: usize| {
         let slot = &sys.slots[s];
         slot.order == 0 && input.starts[slot.var].is_some()
     };
+    let class = |s: usize| match (is_state[s], has_start(s)) {
+        (true, true) => 0,
+        (false, true) => 1,
+        _ => 2,
+    };
+    let mut candidates: Vec<usize> = (0..sys.slots.len())
+        .filter(|&s| is_state[s] || has_start(s))
+        .collect();
     candidates.sort_by(|&a, &b| {
-        has_start(b)
-            .cmp(&has_start(a))
+        class(a)
+            .cmp(&class(b))
             .then(
                 sys.variables[sys.slots[b].var]
                     .state_priority

@@ -1,0 +1,434 @@
+//! Code generation: the builder calls and impls that the macros expand to.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote, quote_spanned};
+use syn::spanned::Spanned;
+use syn::{Attribute, Expr, Ident};
+
+use crate::ast::*;
+use crate::equations;
+
+/// Where the generated code finds the library.
+fn lib() -> TokenStream {
+    quote!(::multibody::__private)
+}
+
+/// The text of doc comments, joined into one line.
+pub fn doc_text(docs: &[Attribute]) -> String {
+    let mut parts = Vec::new();
+    for a in docs {
+        if let syn::Meta::NameValue(nv) = &a.meta
+            && let Expr::Lit(syn::ExprLit {
+                lit: syn::Lit::Str(s),
+                ..
+            }) = &nv.value
+        {
+            let t = s.value();
+            let t = t.trim();
+            if !t.is_empty() {
+                parts.push(t.to_string());
+            }
+        }
+    }
+    parts.join(" ")
+}
+
+fn default_doc(default: &Expr) -> TokenStream {
+    let text = format!(
+        "Default: `{}`.",
+        quote!(#default).to_string().replace(" . ", ".")
+    );
+    quote!(#[doc = ""] #[doc = #text])
+}
+
+fn variable_modifiers(mods: &[Modifier]) -> TokenStream {
+    let mut out = TokenStream::new();
+    for m in mods {
+        let v = &m.value;
+        let key = &m.key;
+        // The builder method has the attribute's name.
+        out.extend(quote_spanned!(key.span()=> .#key(#v)));
+    }
+    out
+}
+
+/// Expands `component!`.
+pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
+    let p = lib();
+    let name = &def.name;
+    let vis = &def.vis;
+    let attrs = &def.attrs;
+    let handle = format_ident!("{}Handle", name);
+    let type_name = match &def.type_name {
+        Some(s) => s.value(),
+        None => name.to_string(),
+    };
+
+    let mut fields = TokenStream::new();
+    let mut defaults = TokenStream::new();
+    let mut handle_fields = TokenStream::new();
+    let mut handle_init = TokenStream::new();
+    let mut build = TokenStream::new();
+    let mut structural = TokenStream::new();
+    let mut parameters = TokenStream::new();
+    let mut bases = TokenStream::new();
+    let mut connectors = TokenStream::new();
+    let mut components = TokenStream::new();
+    let mut variables = TokenStream::new();
+    let mut equations = TokenStream::new();
+    let mut deref = TokenStream::new();
+    let mut n_bases = 0usize;
+
+    for item in &def.items {
+        match item {
+            Item::Parameter {
+                docs,
+                name: n,
+                ty,
+                modifiers,
+                default,
+            } => {
+                let dd = default_doc(default);
+                fields.extend(quote!(#(#docs)* #dd pub #n: #ty,));
+                defaults.extend(quote!(#n: #default,));
+                handle_fields
+                    .extend(quote!(#(#docs)* pub #n: <#ty as #p::ParameterType>::Symbolic,));
+                let s = n.to_string();
+                handle_init
+                    .extend(quote!(#n: <#ty as #p::ParameterType>::at(&#p::member(path, #s)),));
+                let desc = doc_text(docs);
+                let mods = variable_modifiers(modifiers);
+                parameters.extend(quote!(
+                    let #n = #p::ParameterType::declare(
+                        &self.#n,
+                        __s,
+                        #p::Parameter::new(#s, 0.0).description(#desc) #mods,
+                    );
+                ));
+            }
+            Item::Structural {
+                docs,
+                name: n,
+                ty,
+                default,
+            } => {
+                let dd = default_doc(default);
+                fields.extend(quote!(#(#docs)* #dd pub #n: #ty,));
+                defaults.extend(quote!(#n: #default,));
+                structural.extend(quote!(let #n: #ty = ::core::clone::Clone::clone(&self.#n);));
+            }
+            Item::Connector { docs, name: n, ty } => {
+                let s = n.to_string();
+                handle_fields.extend(quote!(#(#docs)* pub #n: <#ty as #p::Connector>::Handle,));
+                handle_init
+                    .extend(quote!(#n: <#ty as #p::Connector>::handle(&#p::member(path, #s)),));
+                connectors.extend(quote!(
+                    let #n = __s.add_connector(#s, &<#ty as ::core::default::Default>::default());
+                ));
+            }
+            Item::Variable {
+                docs,
+                name: n,
+                ty,
+                modifiers,
+            } => {
+                let s = n.to_string();
+                let desc = doc_text(docs);
+                let mods = variable_modifiers(modifiers);
+                handle_fields.extend(quote!(#(#docs)* pub #n: #ty,));
+                handle_init
+                    .extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
+                variables.extend(quote!(
+                    let #n: #ty = __s.declare::<#ty>(
+                        #p::Variable::new(#s).description(#desc) #mods
+                    );
+                ));
+            }
+            Item::Component {
+                docs,
+                name: n,
+                ty,
+                value,
+            } => {
+                let s = n.to_string();
+                handle_fields
+                    .extend(quote!(#(#docs)* pub #n: <#ty as #p::TypedComponent>::Handle,));
+                handle_init.extend(
+                    quote!(#n: <#ty as #p::TypedComponent>::handle(&#p::member(path, #s)),),
+                );
+                let v = match value {
+                    Some(v) => quote!(#v),
+                    None => quote!(<#ty as ::core::default::Default>::default()),
+                };
+                components.extend(quote!(
+                    let #n: <#ty as #p::TypedComponent>::Handle = __s.add_typed(#s, &(#v));
+                ));
+            }
+            Item::Extends { ty, names, value } => {
+                let field = if n_bases == 0 {
+                    format_ident!("base")
+                } else {
+                    format_ident!("base_{}", n_bases)
+                };
+                let local = format_ident!("__base{}", n_bases);
+                let doc = format!(
+                    "The `{}` part (extends).",
+                    quote!(#ty).to_string().replace(' ', "")
+                );
+                handle_fields
+                    .extend(quote!(#[doc = #doc] pub #field: <#ty as #p::TypedComponent>::Handle,));
+                handle_init.extend(quote!(#field: <#ty as #p::TypedComponent>::handle(path),));
+                let v = match value {
+                    Some(v) => quote!(#v),
+                    None => quote!(<#ty as ::core::default::Default>::default()),
+                };
+                bases.extend(quote!(let #local = __s.extend_typed(&(#v));));
+                for m in names {
+                    bases.extend(quote_spanned!(m.span()=>
+                        let #m = ::core::clone::Clone::clone(&#local.#m);
+                    ));
+                }
+                if n_bases == 0 {
+                    deref = quote!(
+                        impl ::core::ops::Deref for #handle {
+                            type Target = <#ty as #p::TypedComponent>::Handle;
+                            fn deref(&self) -> &Self::Target {
+                                &self.base
+                            }
+                        }
+                    );
+                }
+                n_bases += 1;
+            }
+            Item::Equations { initial, body, .. } => {
+                equations.extend(equations::translate(body, *initial)?);
+            }
+        }
+    }
+    build.extend(structural);
+    build.extend(parameters);
+    build.extend(bases);
+    build.extend(connectors);
+    build.extend(components);
+    build.extend(variables);
+    let handle_doc = format!(
+        "Handle of a [`{name}`] instance: its connectors, variables and parameters by name."
+    );
+    Ok(quote! {
+        #(#attrs)*
+        #[derive(Clone, Debug)]
+        #[allow(non_snake_case)]
+        #vis struct #name { #fields }
+
+        impl ::core::default::Default for #name {
+            fn default() -> Self {
+                #name { #defaults }
+            }
+        }
+
+        #[doc = #handle_doc]
+        #[derive(Clone, Debug)]
+        #[allow(non_snake_case)]
+        #vis struct #handle {
+            /// The instance's full path.
+            pub path: #p::PathId,
+            #handle_fields
+        }
+
+        #deref
+
+        impl #p::TypedComponent for #name {
+            type Handle = #handle;
+            fn handle(path: &str) -> #handle {
+                #handle { path: #p::PathId::new(path), #handle_init }
+            }
+        }
+
+        impl #p::Component for #name {
+            fn type_name(&self) -> ::std::string::String {
+                ::std::string::String::from(#type_name)
+            }
+            #[allow(non_snake_case, unused_variables, unused_mut, clippy::all)]
+            fn build(&self, __s: &mut #p::System) {
+                #build
+                let time = #p::Expr::time();
+                {
+                    #[allow(unused_imports)]
+                    use #p::dsl::*;
+                    #equations
+                }
+            }
+        }
+    })
+}
+
+fn role_tokens(role: ConnectorRole) -> TokenStream {
+    let p = lib();
+    match role {
+        ConnectorRole::Potential => quote!(#p::VarKind::Potential),
+        ConnectorRole::Flow => quote!(#p::VarKind::Flow),
+        ConnectorRole::Input => quote!(#p::VarKind::Input),
+        ConnectorRole::Output => quote!(#p::VarKind::Output),
+    }
+}
+
+/// Expands `connector!`.
+pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
+    let p = lib();
+    let name = &def.name;
+    let vis = &def.vis;
+    let attrs = &def.attrs;
+    let name_str = name.to_string();
+    let desc = doc_text(attrs);
+    if let Some((role, ty)) = &def.signal {
+        let kind = role_tokens(*role);
+        let class = format!("signal:{ty}");
+        return Ok(quote! {
+            #(#attrs)*
+            #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+            #vis struct #name;
+
+            impl #p::Component for #name {
+                fn type_name(&self) -> ::std::string::String {
+                    ::std::string::String::from(#name_str)
+                }
+                fn connector_class(&self) -> ::core::option::Option<::std::string::String> {
+                    ::core::option::Option::Some(::std::string::String::from(#class))
+                }
+                fn build(&self, __s: &mut #p::System) {
+                    #p::declare_signal(__s, #kind, #desc);
+                }
+            }
+
+            impl #p::Connector for #name {
+                type Handle = #p::Signal;
+                fn handle(path: &str) -> #p::Signal {
+                    #p::signal_at(path)
+                }
+            }
+        });
+    }
+    let handle = format_ident!("{}Handle", name);
+    let mut fields = TokenStream::new();
+    let mut init = TokenStream::new();
+    let mut build = TokenStream::new();
+    for v in &def.vars {
+        let (docs, n, ty) = (&v.docs, &v.name, &v.ty);
+        let s = n.to_string();
+        let vd = doc_text(docs);
+        let kind = role_tokens(v.role);
+        fields.extend(quote!(#(#docs)* pub #n: #ty,));
+        init.extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
+        build.extend(quote!(
+            __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd));
+        ));
+    }
+    let handle_doc = format!("Handle of a [`{name}`] connector instance: its variables by name.");
+    Ok(quote! {
+        #(#attrs)*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #vis struct #name;
+
+        #[doc = #handle_doc]
+        #[derive(Clone, Copy, Debug)]
+        #[allow(non_snake_case)]
+        #vis struct #handle {
+            /// The connector's full path.
+            pub path: #p::PathId,
+            #fields
+        }
+
+        impl #p::ConnectorHandle for #handle {
+            fn path(&self) -> ::std::string::String {
+                self.path.as_string()
+            }
+        }
+
+        impl #p::Component for #name {
+            fn type_name(&self) -> ::std::string::String {
+                ::std::string::String::from(#name_str)
+            }
+            fn connector_class(&self) -> ::core::option::Option<::std::string::String> {
+                ::core::option::Option::Some(::std::string::String::from(#name_str))
+            }
+            fn build(&self, __s: &mut #p::System) {
+                #build
+            }
+        }
+
+        impl #p::Connector for #name {
+            type Handle = #handle;
+            fn handle(path: &str) -> #handle {
+                #handle { path: #p::PathId::new(path), #init }
+            }
+        }
+    })
+}
+
+/// Adds `..Default::default()` to a struct literal that lists only some fields.
+fn with_defaults(value: &Expr) -> Expr {
+    match value {
+        Expr::Struct(s) if s.rest.is_none() => {
+            let mut s = s.clone();
+            if !s.fields.empty_or_trailing() {
+                s.fields.push_punct(Default::default());
+            }
+            s.dot2_token = Some(Default::default());
+            s.rest = Some(Box::new(syn::parse_quote!(
+                ::core::default::Default::default()
+            )));
+            Expr::Struct(s)
+        }
+        other => other.clone(),
+    }
+}
+
+/// Expands `system!`.
+pub fn system(def: &SystemDef) -> syn::Result<TokenStream> {
+    let p = lib();
+    let name = match &def.name {
+        Some(s) => s.value(),
+        None => "model".to_string(),
+    };
+    let mut body = TokenStream::new();
+    let mut seen: std::collections::HashMap<String, Ident> = Default::default();
+    for item in &def.items {
+        match item {
+            SystemItem::Instance { name: n, value } => {
+                if seen.insert(n.to_string(), n.clone()).is_some() {
+                    return Err(syn::Error::new(
+                        n.span(),
+                        format!("`{n}` is declared twice"),
+                    ));
+                }
+                let s = n.to_string();
+                let v = with_defaults(value);
+                body.extend(quote_spanned!(value.span()=>
+                    #[allow(unused_variables)]
+                    let #n = __s.add_typed(#s, &(#v));
+                ));
+            }
+            SystemItem::Connect { a, b } => {
+                body.extend(quote!(__s.connect_handles(&#a, &#b);));
+            }
+            SystemItem::Equation { initial, lhs, rhs } => {
+                let call = if *initial {
+                    quote!(__s.initial_equate(#lhs, #rhs);)
+                } else {
+                    quote!(__s.equate(#lhs, #rhs);)
+                };
+                body.extend(quote!({
+                    #[allow(unused_imports)]
+                    use #p::dsl::*;
+                    let time = #p::Expr::time();
+                    #call
+                }));
+            }
+        }
+    }
+    Ok(quote!({
+        let mut __s = #p::System::new(#name);
+        #body
+        __s
+    }))
+}

@@ -1,0 +1,195 @@
+//! Unit tests of parsing, checking and expansion.
+
+use quote::quote;
+
+use crate::ast::{ComponentDef, ConnectorDef, Item, SystemDef, SystemItem};
+
+fn parse_component(t: proc_macro2::TokenStream) -> syn::Result<ComponentDef> {
+    let d = syn::parse2::<ComponentDef>(t)?;
+    crate::check::check_component(&d)?;
+    Ok(d)
+}
+
+fn error_of(t: proc_macro2::TokenStream) -> String {
+    match parse_component(t) {
+        Ok(d) => match crate::expand::component(&d) {
+            Ok(_) => panic!("expected an error"),
+            Err(e) => e.to_string(),
+        },
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn inertia_declaration_parses_every_kind_of_item() {
+    let d = parse_component(quote! {
+        /// An inertia.
+        #[type_name = "Rotational.Inertia"]
+        pub struct Inertia {
+            /// Moment of inertia [kg.m2].
+            parameter J: f64 = 1.0;
+            structural use_support: bool = false;
+            connector flange_a: Flange;
+            connector flange_b: Flange;
+            /// Absolute rotation angle [rad].
+            variable phi(start = 0.0, state_priority = 10.0): Real;
+            variable w: Real;
+            component sub: Other = Other { k: 2.0 };
+            extends Base { a, b };
+            equation {
+                phi = flange_a.phi;
+                der(phi) = w;
+                connect(flange_a, sub.flange);
+                if use_support { w = 0.0; } else { w = 1.0; }
+            }
+            initial_equation {
+                phi = 0.0;
+            }
+        }
+    })
+    .unwrap();
+    assert_eq!(d.name, "Inertia");
+    assert_eq!(d.type_name.unwrap().value(), "Rotational.Inertia");
+    let kinds: Vec<&str> = d
+        .items
+        .iter()
+        .map(|i| match i {
+            Item::Parameter { .. } => "parameter",
+            Item::Structural { .. } => "structural",
+            Item::Connector { .. } => "connector",
+            Item::Variable { .. } => "variable",
+            Item::Component { .. } => "component",
+            Item::Extends { .. } => "extends",
+            Item::Equations { initial: false, .. } => "equation",
+            Item::Equations { initial: true, .. } => "initial_equation",
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "parameter",
+            "structural",
+            "connector",
+            "connector",
+            "variable",
+            "variable",
+            "component",
+            "extends",
+            "equation",
+            "initial_equation"
+        ]
+    );
+}
+
+#[test]
+fn expansion_declares_builder_calls() {
+    let d = parse_component(quote! {
+        pub struct Damper {
+            /// Damping constant [N.m.s/rad].
+            parameter d: f64 = 0.0;
+            connector flange_a: Flange;
+            variable w_rel: Real;
+            equation {
+                w_rel = der(flange_a.phi);
+            }
+        }
+    })
+    .unwrap();
+    let out = crate::expand::component(&d).unwrap().to_string();
+    for needle in [
+        "pub struct Damper",
+        "pub struct DamperHandle",
+        "impl :: core :: default :: Default for Damper",
+        "ParameterType :: declare",
+        "add_connector (\"flange_a\"",
+        "Variable :: new (\"w_rel\")",
+        "__s . equate (w_rel , der (flange_a . phi))",
+        "Default: `0.0`.",
+    ] {
+        assert!(out.contains(needle), "missing {needle} in {out}");
+    }
+}
+
+#[test]
+fn malformed_equations_are_errors_at_their_tokens() {
+    let e = error_of(quote! {
+        struct X { variable a: Real; equation { a == 1.0; } }
+    });
+    assert!(e.contains("single `=`"), "{e}");
+    let e = error_of(quote! {
+        struct X { variable a: Real; equation { a + 1.0; } }
+    });
+    assert!(e.contains("expected an equation"), "{e}");
+    let e = error_of(quote! {
+        struct X { variable a: Real; equation { connect(a); } }
+    });
+    assert!(e.contains("connect takes two connectors"), "{e}");
+}
+
+#[test]
+fn bad_declarations_are_errors() {
+    let e = error_of(quote! { struct X { variable a: Real; variable a: Real; } });
+    assert!(e.contains("`a` is declared twice"), "{e}");
+    let e = error_of(quote! { struct X { variable time: Real; } });
+    assert!(e.contains("reserved"), "{e}");
+    let e = error_of(quote! { struct X { variable a(strat = 1.0): Real; } });
+    assert!(e.contains("unknown variable attribute `strat`"), "{e}");
+    let e = error_of(quote! { struct X { parameter k: f64; } });
+    assert!(e.contains("needs a default value"), "{e}");
+    let e = error_of(quote! { struct X { varible a: Real; } });
+    assert!(e.contains("unknown declaration `varible`"), "{e}");
+}
+
+#[test]
+fn connectors_parse_and_expand() {
+    let d = syn::parse2::<ConnectorDef>(quote! {
+        /// A flange.
+        pub struct Flange {
+            /// Angle [rad].
+            potential phi: Real;
+            /// Torque [N.m].
+            flow tau: Real;
+        }
+    })
+    .unwrap();
+    assert_eq!(d.vars.len(), 2);
+    let out = crate::expand::connector(&d).unwrap().to_string();
+    assert!(out.contains("pub struct FlangeHandle"), "{out}");
+    assert!(out.contains("VarKind :: Flow"), "{out}");
+    let s = syn::parse2::<ConnectorDef>(quote! { pub struct RealInput = input Real; }).unwrap();
+    let out = crate::expand::connector(&s).unwrap().to_string();
+    assert!(
+        out.contains("type Handle = :: multibody :: __private :: Signal"),
+        "{out}"
+    );
+    assert!(out.contains("signal:Real"), "{out}");
+    let bad = crate::connector(quote! { pub struct P { across v: Real; } }).to_string();
+    assert!(
+        bad.contains("unknown connector variable kind `across`"),
+        "{bad}"
+    );
+}
+
+#[test]
+fn system_items_and_struct_defaults() {
+    let d = syn::parse2::<SystemDef>(quote! {
+        name: "fourbar";
+        world = World::default();
+        j1 = Revolute { n: [1.0, 0.0, 0.0] };
+        connect(world.frame_b, j1.frame_a);
+        equation j1.phi = 0.0;
+    })
+    .unwrap();
+    assert_eq!(d.name.as_ref().unwrap().value(), "fourbar");
+    assert!(matches!(d.items[2], SystemItem::Connect { .. }));
+    let out = crate::expand::system(&d).unwrap().to_string();
+    assert!(
+        out.contains(":: core :: default :: Default :: default ()"),
+        "{out}"
+    );
+    assert!(out.contains("connect_handles"), "{out}");
+    let bad = crate::system(quote! { connect(a.b); }).to_string();
+    assert!(bad.contains("connect takes two connectors"), "{bad}");
+    let bad = crate::system(quote! { a = A::default(); a = A::default(); }).to_string();
+    assert!(bad.contains("declared twice"), "{bad}");
+}

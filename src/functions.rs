@@ -1,0 +1,121 @@
+//! Functions for equations: `der`, elementary functions, and conditionals.
+//!
+//! They accept anything that converts to an [`Expr`] (numbers, variables, signals), so
+//! equations read as in Modelica: `der(phi) = w;`, `y = k * sin(2.0 * PI * f * time);`.
+
+use multibody_core::expr::Expr;
+use multibody_core::model::Signal;
+
+pub use std::f64::consts::PI;
+
+/// Something with a time derivative.
+pub trait Derivative {
+    /// The type of the derivative.
+    type Output;
+    /// `d/dt self`.
+    fn der(self) -> Self::Output;
+}
+
+impl Derivative for Expr {
+    type Output = Expr;
+    fn der(self) -> Expr {
+        Expr::der(self)
+    }
+}
+
+impl Derivative for Signal {
+    type Output = Expr;
+    fn der(self) -> Expr {
+        self.0.der()
+    }
+}
+
+/// The time derivative `der(x)`.
+pub fn der<T: Derivative>(x: T) -> T::Output {
+    x.der()
+}
+
+macro_rules! unary {
+    ($($(#[$doc:meta])* $name:ident => $method:ident;)*) => {$(
+        $(#[$doc])*
+        pub fn $name(x: impl Into<Expr>) -> Expr {
+            x.into().$method()
+        }
+    )*};
+}
+
+unary! {
+    /// Sine.
+    sin => sin;
+    /// Cosine.
+    cos => cos;
+    /// Tangent.
+    tan => tan;
+    /// Arc sine.
+    asin => asin;
+    /// Arc cosine.
+    acos => acos;
+    /// Arc tangent.
+    atan => atan;
+    /// Exponential.
+    exp => exp;
+    /// Natural logarithm.
+    log => ln;
+    /// Square root.
+    sqrt => sqrt;
+    /// Absolute value.
+    abs => abs;
+    /// Sign: -1, 0 or 1.
+    sign => sign;
+    /// Hyperbolic sine.
+    sinh => sinh;
+    /// Hyperbolic cosine.
+    cosh => cosh;
+    /// Hyperbolic tangent.
+    tanh => tanh;
+}
+
+/// `atan2(y, x)`.
+pub fn atan2(y: impl Into<Expr>, x: impl Into<Expr>) -> Expr {
+    y.into().atan2(x)
+}
+
+/// The smaller of two values.
+pub fn min(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().min(b)
+}
+
+/// The larger of two values.
+pub fn max(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().max(b)
+}
+
+/// `a ^ b`.
+pub fn pow(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().pow(b)
+}
+
+/// `a < b` (1 when true, 0 otherwise).
+pub fn lt(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().lt(b)
+}
+
+/// `a <= b`.
+pub fn le(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().le(b)
+}
+
+/// `a > b`.
+pub fn gt(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().gt(b)
+}
+
+/// `a >= b`.
+pub fn ge(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().ge(b)
+}
+
+/// `if cond then a else b` (`cond` nonzero is true).
+pub fn if_else(cond: impl Into<Expr>, a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::if_else(cond.into(), a, b)
+}

@@ -1,0 +1,130 @@
+//! Rotational components: fixed flange, inertia, spring, damper, gear.
+
+use super::interfaces::*;
+use crate::prelude::*;
+
+component! {
+    /// A flange fixed in the housing at angle `phi0` (MSL `Rotational.Components.Fixed`).
+    #[type_name = "Rotational.Fixed"]
+    pub struct Fixed {
+        /// Fixed offset angle of the housing [rad].
+        parameter phi0: f64 = 0.0;
+        /// The fixed flange.
+        connector flange: Flange;
+        equation {
+            flange.phi = phi0;
+        }
+    }
+}
+
+component! {
+    /// A rigid 1-D rotational inertia (MSL `Rotational.Components.Inertia`).
+    #[type_name = "Rotational.Inertia"]
+    pub struct Inertia {
+        /// Moment of inertia [kg.m2].
+        parameter J: f64 = 1.0;
+        /// Start value of the angle [rad] (a guess, or the assumed initial condition
+        /// when `phi` is a state).
+        structural phi_start: f64 = 0.0;
+        /// Start value of the angular velocity [rad/s].
+        structural w_start: f64 = 0.0;
+        /// Priority of `phi` and `w` as states (MSL default: `StateSelect.default`).
+        structural state_priority: f64 = 0.0;
+        /// Left flange.
+        connector flange_a: Flange;
+        /// Right flange.
+        connector flange_b: Flange;
+        /// Absolute rotation angle [rad].
+        variable phi(start = phi_start, state_priority = state_priority): Real;
+        /// Absolute angular velocity [rad/s].
+        variable w(start = w_start, state_priority = state_priority): Real;
+        /// Absolute angular acceleration [rad/s2].
+        variable a: Real;
+        equation {
+            phi = flange_a.phi;
+            phi = flange_b.phi;
+            w = der(phi);
+            a = der(w);
+            J * a = flange_a.tau + flange_b.tau;
+        }
+    }
+}
+
+component! {
+    /// A linear 1-D rotational spring (MSL `Rotational.Components.Spring`).
+    #[type_name = "Rotational.Spring"]
+    pub struct Spring {
+        /// Spring constant [N.m/rad].
+        parameter c: f64 = 1.0;
+        /// Unstretched spring angle [rad].
+        parameter phi_rel0: f64 = 0.0;
+        extends PartialCompliant { flange_a, flange_b, phi_rel, tau };
+        equation {
+            tau = c * (phi_rel - phi_rel0);
+        }
+    }
+}
+
+component! {
+    /// A linear 1-D rotational damper (MSL `Rotational.Components.Damper`).
+    #[type_name = "Rotational.Damper"]
+    pub struct Damper {
+        /// Damping constant [N.m.s/rad].
+        parameter d: f64 = 0.0;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, tau, w_rel };
+        equation {
+            tau = d * w_rel;
+        }
+    }
+}
+
+component! {
+    /// A linear spring and damper in parallel (MSL `Rotational.Components.SpringDamper`).
+    #[type_name = "Rotational.SpringDamper"]
+    pub struct SpringDamper {
+        /// Spring constant [N.m/rad].
+        parameter c: f64 = 1.0;
+        /// Damping constant [N.m.s/rad].
+        parameter d: f64 = 0.0;
+        /// Unstretched spring angle [rad].
+        parameter phi_rel0: f64 = 0.0;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, tau, w_rel };
+        equation {
+            tau = c * (phi_rel - phi_rel0) + d * w_rel;
+        }
+    }
+}
+
+component! {
+    /// An ideal gear without inertia (MSL `Rotational.Components.IdealGear`):
+    /// `flange_a.phi = ratio * flange_b.phi`. With `use_support` the housing is the
+    /// `support` flange, otherwise it is fixed.
+    #[type_name = "Rotational.IdealGear"]
+    pub struct IdealGear {
+        /// Transmission ratio `flange_a.phi / flange_b.phi` [1].
+        parameter ratio: f64 = 1.0;
+        /// Whether the housing is a connector (`support`) rather than fixed.
+        structural use_support: bool = false;
+        /// Driving flange.
+        connector flange_a: Flange;
+        /// Driven flange.
+        connector flange_b: Flange;
+        /// Housing (used only with `use_support`; otherwise its angle is 0).
+        connector support: Flange;
+        /// Angle of `flange_a` relative to the support [rad].
+        variable phi_a: Real;
+        /// Angle of `flange_b` relative to the support [rad].
+        variable phi_b: Real;
+        equation {
+            phi_a = flange_a.phi - support.phi;
+            phi_b = flange_b.phi - support.phi;
+            phi_a = ratio * phi_b;
+            0.0 = ratio * flange_a.tau + flange_b.tau;
+            if use_support {
+                0.0 = flange_a.tau + flange_b.tau + support.tau;
+            } else {
+                support.phi = 0.0;
+            }
+        }
+    }
+}

@@ -1,0 +1,115 @@
+//! Rotational sources: torques and prescribed motion.
+
+use super::interfaces::*;
+use crate::blocks::RealInput;
+use crate::prelude::*;
+
+component! {
+    /// Applies the input torque `tau` to `flange` (MSL `Rotational.Sources.Torque`):
+    /// positive `tau` accelerates the flange. The reaction acts on `support` when
+    /// `use_support`, otherwise on a fixed housing.
+    #[type_name = "Rotational.Torque"]
+    pub struct Torque {
+        /// Whether the reaction torque acts on the `support` connector.
+        structural use_support: bool = false;
+        /// Torque driving the flange [N.m].
+        connector tau: RealInput;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Housing (used only with `use_support`).
+        connector support: Flange;
+        equation {
+            flange.tau = -tau;
+            if use_support {
+                support.tau = tau;
+            } else {
+                support.phi = 0.0;
+            }
+        }
+    }
+}
+
+component! {
+    /// A constant torque, independent of speed (MSL `Rotational.Sources.ConstantTorque`).
+    #[type_name = "Rotational.ConstantTorque"]
+    pub struct ConstantTorque {
+        /// The torque accelerating the flange [N.m].
+        parameter tau_constant: f64 = 1.0;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Torque accelerating the flange, `-flange.tau` [N.m].
+        variable tau: Real;
+        equation {
+            tau = -flange.tau;
+            tau = tau_constant;
+        }
+    }
+}
+
+component! {
+    /// Forces the flange to follow the reference angle `phi_ref` (MSL
+    /// `Rotational.Sources.Position`): exactly (the reference is differentiated, so it
+    /// must be smooth), or filtered by a critically damped 2nd-order Bessel filter of
+    /// cut-off frequency `f_crit` whose states are the flange's angle and speed.
+    #[type_name = "Rotational.Position"]
+    pub struct Position {
+        /// Follow the reference exactly rather than filtered.
+        structural exact: bool = false;
+        /// Cut-off frequency of the filter when not exact [Hz].
+        parameter f_crit: f64 = 50.0;
+        /// Reference angle [rad].
+        connector phi_ref: RealInput;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Rotation angle of the flange [rad].
+        variable phi(state_priority = 10.0): Real;
+        /// Angular velocity of the flange [rad/s].
+        variable w(state_priority = 10.0): Real;
+        /// Angular acceleration of the flange [rad/s2].
+        variable a: Real;
+        equation {
+            phi = flange.phi;
+            w = der(phi);
+            a = der(w);
+            if exact {
+                phi = phi_ref;
+            } else {
+                // 2nd-order critically damped Bessel filter (af = 1.3617, bf = 0.6180).
+                a = ((phi_ref - phi) * (2.0 * PI * f_crit) - 1.3617 * w)
+                    * ((2.0 * PI * f_crit) / 0.6180);
+            }
+        }
+    }
+}
+
+component! {
+    /// Forces the flange to the reference speed `w_ref` (MSL `Rotational.Sources.Speed`):
+    /// exactly, or through a first-order filter of cut-off frequency `f_crit`.
+    #[type_name = "Rotational.Speed"]
+    pub struct Speed {
+        /// Follow the reference exactly rather than filtered.
+        structural exact: bool = false;
+        /// Cut-off frequency of the filter when not exact [Hz].
+        parameter f_crit: f64 = 50.0;
+        /// Reference speed [rad/s].
+        connector w_ref: RealInput;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Rotation angle of the flange [rad].
+        variable phi(state_priority = 10.0): Real;
+        /// Angular velocity of the flange [rad/s].
+        variable w(state_priority = 10.0): Real;
+        /// Angular acceleration of the flange [rad/s2].
+        variable a: Real;
+        equation {
+            phi = flange.phi;
+            w = der(phi);
+            a = der(w);
+            if exact {
+                w = w_ref;
+            } else {
+                a = (w_ref - w) * (2.0 * PI * f_crit);
+            }
+        }
+    }
+}

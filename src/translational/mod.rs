@@ -1,0 +1,157 @@
+//! 1-D translational mechanics (MSL `Modelica.Mechanics.Translational`): flanges
+//! carry a position `s` [m] and a cut force `f` [N] (positive into the component).
+
+use crate::blocks::{RealInput, RealOutput};
+use crate::prelude::*;
+
+connector! {
+    /// A translational flange (MSL `Flange_a` / `Flange_b`).
+    pub struct Flange {
+        /// Absolute position [m].
+        potential s: Real;
+        /// Cut force, positive into the component [N].
+        flow f: Real;
+    }
+}
+
+component! {
+    /// Two flanges with a relative distance and a force between them (MSL
+    /// `PartialCompliant`).
+    #[type_name = "Translational.PartialCompliant"]
+    pub struct PartialCompliant {
+        /// Left flange.
+        connector flange_a: Flange;
+        /// Right flange.
+        connector flange_b: Flange;
+        /// Relative distance `flange_b.s - flange_a.s` [m].
+        variable s_rel: Real;
+        /// Force between the flanges, `flange_b.f` [N].
+        variable f: Real;
+        equation {
+            s_rel = flange_b.s - flange_a.s;
+            flange_b.f = f;
+            flange_a.f = -f;
+        }
+    }
+}
+
+component! {
+    /// A flange fixed at position `s0` (MSL `Translational.Components.Fixed`).
+    #[type_name = "Translational.Fixed"]
+    pub struct Fixed {
+        /// Fixed position [m].
+        parameter s0: f64 = 0.0;
+        /// The fixed flange.
+        connector flange: Flange;
+        equation {
+            flange.s = s0;
+        }
+    }
+}
+
+component! {
+    /// A sliding mass of length `L` (MSL `Translational.Components.Mass`).
+    #[type_name = "Translational.Mass"]
+    pub struct Mass {
+        /// Mass [kg].
+        parameter m: f64 = 1.0;
+        /// Length of the mass (the flanges are `L/2` from its centre) [m].
+        parameter L: f64 = 0.0;
+        /// Start value of the position [m].
+        structural s_start: f64 = 0.0;
+        /// Start value of the velocity [m/s].
+        structural v_start: f64 = 0.0;
+        /// Priority of `s` and `v` as states (MSL default: `StateSelect.default`).
+        structural state_priority: f64 = 0.0;
+        /// Left flange.
+        connector flange_a: Flange;
+        /// Right flange.
+        connector flange_b: Flange;
+        /// Absolute position of the centre [m].
+        variable s(start = s_start, state_priority = state_priority): Real;
+        /// Absolute velocity [m/s].
+        variable v(start = v_start, state_priority = state_priority): Real;
+        /// Absolute acceleration [m/s2].
+        variable a: Real;
+        equation {
+            flange_a.s = s - L / 2.0;
+            flange_b.s = s + L / 2.0;
+            v = der(s);
+            a = der(v);
+            m * a = flange_a.f + flange_b.f;
+        }
+    }
+}
+
+component! {
+    /// A linear translational spring (MSL `Translational.Components.Spring`).
+    #[type_name = "Translational.Spring"]
+    pub struct Spring {
+        /// Spring constant [N/m].
+        parameter c: f64 = 1.0;
+        /// Unstretched spring length [m].
+        parameter s_rel0: f64 = 0.0;
+        extends PartialCompliant { flange_a, flange_b, s_rel, f };
+        equation {
+            f = c * (s_rel - s_rel0);
+        }
+    }
+}
+
+component! {
+    /// A linear translational damper (MSL `Translational.Components.Damper`).
+    #[type_name = "Translational.Damper"]
+    pub struct Damper {
+        /// Damping constant [N.s/m].
+        parameter d: f64 = 0.0;
+        /// Priority of `s_rel` and `v_rel` as states (MSL default: prefer).
+        structural state_priority: f64 = StateSelect::Prefer.priority();
+        extends PartialCompliant { flange_a, flange_b, s_rel, f };
+        /// Relative velocity `der(s_rel)` [m/s].
+        variable v_rel(state_priority = state_priority): Real;
+        equation {
+            v_rel = der(s_rel);
+            f = d * v_rel;
+        }
+    }
+}
+
+component! {
+    /// Applies the input force `f` to `flange` (MSL `Translational.Sources.Force`); the
+    /// reaction acts on `support` when `use_support`, otherwise on a fixed housing.
+    #[type_name = "Translational.Force"]
+    pub struct Force {
+        /// Whether the reaction force acts on the `support` connector.
+        structural use_support: bool = false;
+        /// Force driving the flange [N].
+        connector f: RealInput;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Housing (used only with `use_support`).
+        connector support: Flange;
+        equation {
+            flange.f = -f;
+            if use_support {
+                support.f = f;
+            } else {
+                support.s = 0.0;
+            }
+        }
+    }
+}
+
+component! {
+    /// Measures the absolute position of a flange (MSL
+    /// `Translational.Sensors.PositionSensor`).
+    #[type_name = "Translational.PositionSensor"]
+    pub struct PositionSensor {
+        /// Measured flange.
+        connector flange: Flange;
+        /// Absolute position [m].
+        connector s: RealOutput;
+        equation {
+            s = flange.s;
+            0.0 = flange.f;
+        }
+    }
+}
