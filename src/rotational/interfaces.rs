@@ -34,20 +34,30 @@ component! {
 }
 
 component! {
-    /// [`PartialCompliant`] with the relative angle and speed preferred as states (MSL
-    /// `PartialCompliantWithRelativeStates`).
+    /// Two flanges with the relative angle and speed preferred as states (MSL
+    /// `PartialCompliantWithRelativeStates`): the base of dampers.
     #[type_name = "Rotational.PartialCompliantWithRelativeStates"]
     pub struct PartialCompliantWithRelativeStates {
         /// Priority of `phi_rel` and `w_rel` as states (MSL default: prefer).
         structural state_priority: f64 = StateSelect::Prefer.priority();
-        extends PartialCompliant { flange_a, flange_b, phi_rel, tau };
+        /// Left flange.
+        connector flange_a: Flange;
+        /// Right flange.
+        connector flange_b: Flange;
+        /// Relative rotation angle `flange_b.phi - flange_a.phi` [rad].
+        variable phi_rel(state_priority = state_priority): Real;
         /// Relative angular velocity `der(phi_rel)` [rad/s].
         variable w_rel(state_priority = state_priority): Real;
         /// Relative angular acceleration `der(w_rel)` [rad/s2].
         variable a_rel: Real;
+        /// Torque between the flanges, `flange_b.tau` [N.m].
+        variable tau: Real;
         equation {
+            phi_rel = flange_b.phi - flange_a.phi;
             w_rel = der(phi_rel);
             a_rel = der(w_rel);
+            flange_b.tau = tau;
+            flange_a.tau = -tau;
         }
     }
 }

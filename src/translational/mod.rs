@@ -99,18 +99,42 @@ component! {
 }
 
 component! {
+    /// Two flanges with the relative distance and speed preferred as states (MSL
+    /// `PartialCompliantWithRelativeStates`): the base of dampers.
+    #[type_name = "Translational.PartialCompliantWithRelativeStates"]
+    pub struct PartialCompliantWithRelativeStates {
+        /// Priority of `s_rel` and `v_rel` as states (MSL default: prefer).
+        structural state_priority: f64 = StateSelect::Prefer.priority();
+        /// Left flange.
+        connector flange_a: Flange;
+        /// Right flange.
+        connector flange_b: Flange;
+        /// Relative distance `flange_b.s - flange_a.s` [m].
+        variable s_rel(state_priority = state_priority): Real;
+        /// Relative velocity `der(s_rel)` [m/s].
+        variable v_rel(state_priority = state_priority): Real;
+        /// Relative acceleration `der(v_rel)` [m/s2].
+        variable a_rel: Real;
+        /// Force between the flanges, `flange_b.f` [N].
+        variable f: Real;
+        equation {
+            s_rel = flange_b.s - flange_a.s;
+            v_rel = der(s_rel);
+            a_rel = der(v_rel);
+            flange_b.f = f;
+            flange_a.f = -f;
+        }
+    }
+}
+
+component! {
     /// A linear translational damper (MSL `Translational.Components.Damper`).
     #[type_name = "Translational.Damper"]
     pub struct Damper {
         /// Damping constant [N.s/m].
         parameter d: f64 = 0.0;
-        /// Priority of `s_rel` and `v_rel` as states (MSL default: prefer).
-        structural state_priority: f64 = StateSelect::Prefer.priority();
-        extends PartialCompliant { flange_a, flange_b, s_rel, f };
-        /// Relative velocity `der(s_rel)` [m/s].
-        variable v_rel(state_priority = state_priority): Real;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, s_rel, v_rel, f };
         equation {
-            v_rel = der(s_rel);
             f = d * v_rel;
         }
     }

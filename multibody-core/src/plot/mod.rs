@@ -472,7 +472,24 @@ fn draw_panel(panel: &Panel, area: &Area<'_>, options: &PlotOptions) -> DrawResu
         let style = PALETTE[k % PALETTE.len()].stroke_width(line_width);
         let (lines, points): (Vec<_>, Vec<_>) =
             finite_runs(s).into_iter().partition(|r| r.len() > 1);
-        chart.draw_series(lines.into_iter().map(|run| PathElement::new(run, style)))?;
+        // Thick polylines are drawn with miter joins, which spike where a dense curve
+        // turns sharply within a pixel: keep one point per pixel and draw the segments
+        // one by one.
+        for run in lines {
+            let mut kept: Vec<(f64, f64)> = Vec::with_capacity(run.len());
+            let mut last_px = None;
+            for (i, &p) in run.iter().enumerate() {
+                let px = chart.backend_coord(&p);
+                if last_px != Some(px) || i + 1 == run.len() {
+                    kept.push(p);
+                    last_px = Some(px);
+                }
+            }
+            chart.draw_series(
+                kept.windows(2)
+                    .map(|w| PathElement::new(vec![w[0], w[1]], style)),
+            )?;
+        }
         let radius = line_width.max(2);
         chart.draw_series(
             points

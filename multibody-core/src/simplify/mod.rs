@@ -93,6 +93,11 @@ pub fn structural_simplify_with(
         })
         .collect();
     let starts = flat.starts.clone();
+    let flat_names = crate::model::FlatNames {
+        variables: &flat.variables,
+        parameters: &flat.parameters,
+    };
+    let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
@@ -101,6 +106,7 @@ pub fn structural_simplify_with(
             kept: &kept,
             derivative_map: &aliases.derivative_map,
             equations,
+            show: &show,
         },
         &name,
     )?;
@@ -126,7 +132,14 @@ pub fn structural_simplify_with(
             &name,
             s.over_equations
                 .iter()
-                .map(|&e| reduced.equations[e].text.clone())
+                .map(|&e| {
+                    reduce::with_reduced_form(
+                        &reduced.equations[e].text,
+                        &flat.arena,
+                        reduced.equations[e].residual,
+                        &show,
+                    )
+                })
                 .collect(),
             s.over_unknowns.iter().map(name_of).collect(),
             s.under_unknowns.iter().map(name_of).collect(),

@@ -133,6 +133,28 @@ pub(crate) struct ReduceInput<'a> {
     pub derivative_map: &'a HashMap<Id, Id>,
     /// Equations: residual and text.
     pub equations: Vec<(Id, String)>,
+    /// Displays an expression (for messages).
+    pub show: &'a dyn Fn(&Arena, Id) -> String,
+}
+
+/// An equation as written, followed by what it became after alias elimination, for
+/// messages about structural singularities.
+pub(crate) fn with_reduced_form(
+    text: &str,
+    arena: &Arena,
+    residual: Id,
+    show: &dyn Fn(&Arena, Id) -> String,
+) -> String {
+    let reduced = show(arena, residual);
+    let no_unknowns = arena
+        .leaves(residual)
+        .iter()
+        .all(|&l| !matches!(arena.node(l), Node::Var(_) | Node::Der(_)));
+    if no_unknowns {
+        format!("{text}   [reduces to 0 = {reduced}: no unknown is left in it]")
+    } else {
+        format!("{text}   [reduces to 0 = {reduced}]")
+    }
 }
 
 /// Runs index reduction and state selection.
@@ -144,6 +166,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         kept,
         derivative_map,
         equations,
+        show,
     } = input;
     let mut table = SlotTable {
         arena,
@@ -181,7 +204,10 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
             };
             return Err(SimplifyError::singular(
                 model,
-                equations.iter().map(|&e| eqs[e].text.clone()).collect(),
+                equations
+                    .iter()
+                    .map(|&e| with_reduced_form(&eqs[e].text, table.arena, eqs[e].residual, show))
+                    .collect(),
                 names(&overdetermined),
                 names(&undetermined),
             ));

@@ -752,7 +752,9 @@ fn stats(mem: *mut c_void) -> IdaStats {
     }
 }
 
-/// Integrate from t0; `on_output(t, y, yp)` is called for t0 (with the consistent values after calc_ic if enabled) and every output. Returns statistics.
+/// Integrate from t0; `on_output(t, y, yp)` is called for t0 (with the consistent values
+/// after calc_ic if enabled) and every output, and returns `false` to stop (the
+/// integration then fails with the flag `STOPPED`). Returns statistics.
 #[allow(clippy::type_complexity)]
 pub fn integrate(
     f: &mut dyn DaeFunctions,
@@ -761,7 +763,7 @@ pub fn integrate(
     yp0: &[f64],
     settings: &IdaSettings,
     output: &OutputMode,
-    on_output: &mut dyn FnMut(f64, &[f64], &[f64]),
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
 ) -> Result<IdaStats, IdaError> {
     let n = f.len();
     validate(n, t0, y0, yp0, settings, output)?;
@@ -770,8 +772,12 @@ pub fn integrate(
         // Nothing to integrate: report the requested times.
         on_output(t0, &[], &[]);
         match output {
-            OutputMode::Times(times) => times.iter().for_each(|&t| on_output(t, &[], &[])),
-            OutputMode::EveryStep { t_end } => on_output(*t_end, &[], &[]),
+            OutputMode::Times(times) => times.iter().for_each(|&t| {
+                on_output(t, &[], &[]);
+            }),
+            OutputMode::EveryStep { t_end } => {
+                on_output(*t_end, &[], &[]);
+            }
         }
         return Ok(IdaStats::default());
     }
@@ -873,6 +879,17 @@ pub fn integrate(
         }
         let flag = sys::IDASetMaxNumSteps(mem, max_steps);
         g.check(flag, t0, "IDASetMaxNumSteps", settings)?;
+        // A step below the resolution of time cannot advance it: stop instead of
+        // shrinking forever (a solution that blows up, or a singular model).
+        let t_scale = match output {
+            OutputMode::Times(times) => times.last().copied().unwrap_or(t0),
+            OutputMode::EveryStep { t_end } => *t_end,
+        }
+        .abs()
+        .max(t0.abs())
+        .max(1e-300);
+        let flag = sys::IDASetMinStep(mem, 4.0 * f64::EPSILON * t_scale);
+        g.check(flag, t0, "IDASetMinStep", settings)?;
         if !settings.id.is_empty() || settings.calc_ic {
             let id = if settings.id.is_empty() {
                 vec![1.0; n]
@@ -938,7 +955,14 @@ pub fn integrate(
             let flag = sys::IDAGetConsistentIC(mem, yy, yp);
             g.check(flag, t0, "IDAGetConsistentIC", settings)?;
         }
-        on_output(t0, vec_ref(yy, n), vec_ref(yp, n));
+        let stopped = |t: f64| IdaError {
+            t,
+            flag: "STOPPED".into(),
+            message: "the output callback stopped the integration".into(),
+        };
+        if !on_output(t0, vec_ref(yy, n), vec_ref(yp, n)) {
+            return Err(stopped(t0));
+        }
 
         let mut t = t0;
         match output {
@@ -948,7 +972,9 @@ pub fn integrate(
                     if flag < 0 {
                         return Err(g.error(t, flag, "", settings));
                     }
-                    on_output(t, vec_ref(yy, n), vec_ref(yp, n));
+                    if !on_output(t, vec_ref(yy, n), vec_ref(yp, n)) {
+                        return Err(stopped(t));
+                    }
                 }
             }
             OutputMode::EveryStep { t_end } => loop {
@@ -957,10 +983,14 @@ pub fn integrate(
                     return Err(g.error(t, flag, "", settings));
                 }
                 if flag == sys::IDA_TSTOP_RETURN || t >= *t_end {
-                    on_output(*t_end, vec_ref(yy, n), vec_ref(yp, n));
+                    if !on_output(*t_end, vec_ref(yy, n), vec_ref(yp, n)) {
+                        return Err(stopped(t));
+                    }
                     break;
                 }
-                on_output(t, vec_ref(yy, n), vec_ref(yp, n));
+                if !on_output(t, vec_ref(yy, n), vec_ref(yp, n)) {
+                    return Err(stopped(t));
+                }
             },
         }
         let st = stats(mem);
@@ -1043,7 +1073,10 @@ mod tests {
             &[-0.04, 0.04, 0.0],
             &settings,
             &OutputMode::Times(times),
-            &mut |t, y, _| out.push((t, y.to_vec())),
+            &mut |t, y, _| {
+                out.push((t, y.to_vec()));
+                true
+            },
         )
         .unwrap();
         (out, stats)
@@ -1179,7 +1212,10 @@ mod tests {
                 &[0.0, -1.0, 0.0],
                 &osc_settings(solver),
                 &OutputMode::Times(times.clone()),
-                &mut |t, y, _| out.push((t, y.to_vec())),
+                &mut |t, y, _| {
+                out.push((t, y.to_vec()));
+                true
+            },
             )
             .unwrap();
             assert_eq!(out.len(), times.len() + 1);
@@ -1202,7 +1238,8 @@ mod tests {
                 &OutputMode::EveryStep { t_end: 3.0 },
                 &mut |t, y, _| {
                     assert!((y[0] - t.cos()).abs() < 1e-6);
-                    ts.push(t)
+                    ts.push(t);
+                    true
                 },
             )
             .unwrap();
@@ -1238,7 +1275,10 @@ mod tests {
                 &[0.0, -1.0, 0.0],
                 &settings,
                 &OutputMode::Times(vec![0.5, 2.0]),
-                &mut |t, _, _| last_t = t,
+                &mut |t, _, _| {
+                    last_t = t;
+                    true
+                },
             )
             .unwrap_err();
             assert_eq!(last_t, 0.5);
@@ -1265,7 +1305,7 @@ mod tests {
             &[0.0, -1.0, 0.0],
             &osc_settings(LinearSolver::SparseLu),
             &OutputMode::Times(vec![1.0]),
-            &mut |_, _, _| {},
+            &mut |_, _, _| true,
         )
         .unwrap_err();
         assert_eq!(err.flag, "IDA_RES_FAIL");
@@ -1289,7 +1329,7 @@ mod tests {
             &[0.0, -1.0, 0.0],
             &settings,
             &OutputMode::Times(vec![100.0]),
-            &mut |_, _, _| {},
+            &mut |_, _, _| true,
         )
         .unwrap_err();
         assert_eq!(err.flag, "IDA_TOO_MUCH_WORK");
@@ -1303,7 +1343,7 @@ mod tests {
             &[0.0, -1.0, 0.0],
             &settings,
             &OutputMode::Times(vec![2.0, 1.0]),
-            &mut |_, _, _| {},
+            &mut |_, _, _| true,
         )
         .unwrap_err();
         assert_eq!(err.flag, "INVALID_INPUT");
@@ -1316,7 +1356,7 @@ mod tests {
             &[-0.04, 0.04, 0.0],
             &IdaSettings::default(),
             &OutputMode::Times(vec![1.0]),
-            &mut |_, _, _| {},
+            &mut |_, _, _| true,
         )
         .unwrap_err();
         assert_eq!(err.flag, "INVALID_INPUT");
@@ -1342,7 +1382,10 @@ mod tests {
                 &[0.0, 0.0, 0.0],
                 &settings,
                 &OutputMode::Times(vec![1.0, 2.0]),
-                &mut |t, y, yp| out.push((t, y.to_vec(), yp.to_vec())),
+                &mut |t, y, yp| {
+                    out.push((t, y.to_vec(), yp.to_vec()));
+                    true
+                },
             )
             .unwrap();
             let (t, y, yp) = &out[0];
@@ -1465,6 +1508,7 @@ mod tests {
                 for i in 0..m {
                     max_err = max_err.max((y[2 * i] - shape[i] * (omega * t).cos()).abs());
                 }
+                true
             },
         )
         .unwrap();

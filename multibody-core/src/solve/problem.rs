@@ -326,25 +326,17 @@ impl<'a> DaeProblem<'a> {
             &settings,
             &output,
             &mut |t, u, up| {
-                if exceeded.is_some() {
-                    return;
-                }
                 if steps_left == 0 {
                     exceeded = Some(t);
-                    return;
+                    return false;
                 }
                 steps_left -= 1;
                 t_out.push(t);
                 u_out.extend_from_slice(u);
                 up_out.extend_from_slice(up);
+                true
             },
         );
-        let stats = result.map_err(|e| SolveError {
-            model: sys.name.clone(),
-            t: e.t,
-            flag: e.flag.clone(),
-            message: e.message.clone(),
-        })?;
         if let Some(t) = exceeded {
             return Err(SolveError {
                 model: sys.name.clone(),
@@ -357,6 +349,12 @@ impl<'a> DaeProblem<'a> {
             }
             .into());
         }
+        let stats = result.map_err(|e| SolveError {
+            model: sys.name.clone(),
+            t: e.t,
+            flag: e.flag.clone(),
+            message: e.message.clone(),
+        })?;
         Ok(Solution::new(
             sys.name.clone(),
             Arc::new(c.observed.clone()),

@@ -1,0 +1,140 @@
+//! Algebraic loops: a linear resistor network that tearing solves inside the compiled
+//! functions, and a nonlinear loop whose tearing variable is left to the solver.
+
+use multibody::electrical::{Capacitor, ConstantVoltage, Ground, OnePort, Pin, Resistor};
+use multibody::prelude::*;
+
+/// A Wheatstone bridge driven by 10 V with a capacitor across its outputs.
+fn bridge() -> System {
+    system! {
+        name: "bridge";
+        source = ConstantVoltage { V: 10.0 };
+        r1 = Resistor { R: 100.0 };
+        r2 = Resistor { R: 200.0 };
+        r3 = Resistor { R: 300.0 };
+        r4 = Resistor { R: 400.0 };
+        r5 = Resistor { R: 500.0 };
+        c = Capacitor { C: 1e-3 };
+        ground = Ground::default();
+        // top node: source.p; left branch r1 (top-a), r3 (a-bottom); right r2 (top-b),
+        // r4 (b-bottom); r5 and the capacitor bridge a and b.
+        connect(source.p, r1.p);
+        connect(source.p, r2.p);
+        connect(r1.n, r3.p);
+        connect(r2.n, r4.p);
+        connect(r3.n, source.n);
+        connect(r4.n, source.n);
+        connect(r1.n, r5.p);
+        connect(r5.n, r2.n);
+        connect(r1.n, c.p);
+        connect(c.n, r2.n);
+        connect(source.n, ground.p);
+    }
+}
+
+/// Node voltages (a, b) of the bridge for a capacitor voltage `vc = va - vb`: nodal
+/// analysis with the capacitor current `ic` as unknown, solved by hand.
+fn bridge_nodes(vc: f64) -> (f64, f64, f64) {
+    // KCL at a: (10 - va)/100 = va/300 + (va - vb)/500 + ic
+    // KCL at b: (10 - vb)/200 + (va - vb)/500 + ic = vb/400
+    // va - vb = vc.  Substitute va = vb + vc and add the two KCLs (ic cancels):
+    // (10 - vb - vc)/100 - (vb + vc)/300 + (10 - vb)/200 - vb/400 = 0
+    let (g1, g2, g3, g4) = (1.0 / 100.0, 1.0 / 200.0, 1.0 / 300.0, 1.0 / 400.0);
+    let vb = (10.0 * g1 - vc * g1 - vc * g3 + 10.0 * g2) / (g1 + g3 + g2 + g4);
+    let va = vb + vc;
+    let ic = (10.0 - va) * g1 - va * g3 - (va - vb) / 500.0;
+    (va, vb, ic)
+}
+
+#[test]
+fn resistor_bridge_is_a_linear_block_solved_inside() {
+    let ssys = structural_simplify(&bridge()).unwrap();
+    // One state (the capacitor voltage); the network's currents form one linear block
+    // that tearing reduces and the compiled residual solves: no algebraic unknowns.
+    assert_eq!(ssys.states(), ["c.v"]);
+    assert_eq!(ssys.mass_matrix_diagonal(), &[1.0]);
+    let st = ssys.statistics();
+    assert_eq!(st.algebraic, 0, "{st}");
+    assert_eq!(st.linear_inline.len(), 1, "{st}");
+    let (size, torn) = st.linear_inline[0];
+    assert!(size >= 4 && torn >= 1 && torn < size, "{st}");
+    assert!(st.nonlinear.is_empty(), "{st}");
+
+    let sol = DaeProblem::new(&ssys, &[("c.v", 0.0)], (0.0, 2.0))
+        .unwrap()
+        .solve(&SolverOptions {
+            rtol: 1e-10,
+            atol: 1e-12,
+            ..SolverOptions::default()
+        })
+        .unwrap();
+    for &t in &[0.0, 0.05, 0.3, 2.0] {
+        let vc = sol.at("c.v", t).unwrap();
+        let (va, vb, ic) = bridge_nodes(vc);
+        assert!((sol.at("r3.v", t).unwrap() - va).abs() < 1e-9, "va at {t}");
+        assert!((sol.at("r4.v", t).unwrap() - vb).abs() < 1e-9, "vb at {t}");
+        assert!((sol.at("c.i", t).unwrap() - ic).abs() < 1e-11, "ic at {t}");
+    }
+    // At steady state the capacitor carries no current: vc = va - vb of the bridge
+    // without it.
+    let vc_end = sol.final_value("c.v").unwrap();
+    let (_, _, ic_end) = bridge_nodes(vc_end);
+    assert!(ic_end.abs() < 1e-6, "capacitor current at the end {ic_end}");
+}
+
+component! {
+    /// A resistor with a cubic characteristic `v = R0 i + a i^3`.
+    pub struct CubicResistor {
+        /// Linear resistance [Ohm].
+        parameter R0: f64 = 1.0;
+        /// Cubic coefficient [V/A3].
+        parameter a: f64 = 1.0;
+        extends OnePort { p, n, v, i };
+        equation {
+            v = R0 * i + a * i * i * i;
+        }
+    }
+}
+
+#[test]
+fn nonlinear_loop_keeps_one_iteration_variable() {
+    let model = system! {
+        name: "cubic_loop";
+        source = ConstantVoltage { V: 5.0 };
+        nonlinear = CubicResistor { R0: 1.0, a: 2.0 };
+        load = Resistor { R: 2.0 };
+        c = Capacitor { C: 0.1 };
+        ground = Ground::default();
+        connect(source.p, nonlinear.p);
+        connect(nonlinear.n, load.p);
+        connect(load.n, source.n);
+        connect(nonlinear.n, c.p);
+        connect(c.n, source.n);
+        connect(source.n, ground.p);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    // The current through the cubic resistor cannot be solved explicitly: it is the
+    // tearing variable of a nonlinear block and an algebraic unknown of the DAE.
+    assert_eq!(ssys.statistics().nonlinear, vec![(1, 1)], "{}", ssys.statistics());
+    assert_eq!(ssys.unknowns().len(), 2);
+    assert_eq!(ssys.mass_matrix_diagonal(), &[0.0, 1.0]);
+    let sol = DaeProblem::new(&ssys, &[("c.v", 0.0)], (0.0, 3.0))
+        .unwrap()
+        .solve(&SolverOptions {
+            rtol: 1e-8,
+            atol: 1e-10,
+            ..SolverOptions::default()
+        })
+        .unwrap();
+    // The loop equation holds at every point to the Newton tolerance of IDA: 5 - vc =
+    // i + 2 i^3.
+    let vc = sol.get("c.v").unwrap();
+    let i = sol.get("nonlinear.i").unwrap();
+    for k in 0..vc.len() {
+        let r = 5.0 - vc[k] - (i[k] + 2.0 * i[k].powi(3));
+        assert!(r.abs() < 1e-6, "loop residual {r} at {}", sol.t()[k]);
+    }
+    // Steady state: i = vc / 2 with 5 = 2 i + i + 2 i^3 -> 2 i^3 + 3 i - 5 = 0 -> i = 1.
+    assert!((sol.final_value("load.i").unwrap() - 1.0).abs() < 1e-3);
+    let _ = Pin;
+}
