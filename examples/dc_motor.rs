@@ -75,4 +75,3 @@ fn main() -> Result<(), multibody::Error> {
     println!("wrote dc_motor.png");
     Ok(())
 }
-

@@ -1,6 +1,8 @@
 //! Algebraic loops: a linear resistor network that tearing solves inside the compiled
 //! functions, and a nonlinear loop whose tearing variable is left to the solver.
 
+#![allow(missing_docs)]
+
 use multibody::electrical::{Capacitor, ConstantVoltage, Ground, OnePort, Pin, Resistor};
 use multibody::prelude::*;
 
@@ -115,7 +117,12 @@ fn nonlinear_loop_keeps_one_iteration_variable() {
     let ssys = structural_simplify(&model).unwrap();
     // The current through the cubic resistor cannot be solved explicitly: it is the
     // tearing variable of a nonlinear block and an algebraic unknown of the DAE.
-    assert_eq!(ssys.statistics().nonlinear, vec![(1, 1)], "{}", ssys.statistics());
+    assert_eq!(
+        ssys.statistics().nonlinear,
+        vec![(1, 1)],
+        "{}",
+        ssys.statistics()
+    );
     assert_eq!(ssys.unknowns().len(), 2);
     assert_eq!(ssys.mass_matrix_diagonal(), &[0.0, 1.0]);
     let sol = DaeProblem::new(&ssys, &[("c.v", 0.0)], (0.0, 3.0))

@@ -29,9 +29,9 @@ fn damped_mass_spring_matches_the_analytic_solution() {
     let model = system! {
         name: "mass_spring";
         fixed = translational::Fixed::default();
-        spring = translational::Spring { c: c };
-        damper = translational::Damper { d: d };
-        mass = translational::Mass { m: m, s_start: 0.1 };
+        spring = translational::Spring { c };
+        damper = translational::Damper { d };
+        mass = translational::Mass { m, s_start: 0.1 };
         connect(fixed.flange, spring.flange_a);
         connect(spring.flange_b, mass.flange_a);
         connect(fixed.flange, damper.flange_a);
@@ -75,7 +75,10 @@ fn rc_circuit_charges_with_time_constant_rc() {
     for &t in &[0.2, 1.0, 2.0, 5.0] {
         let exact = 10.0 * (1.0 - (-t / 1.0f64).exp());
         let got = sol.at("capacitor.v", t).unwrap();
-        assert!((got - exact).abs() < 1e-6 * exact, "v({t}) = {got}, exact {exact}");
+        assert!(
+            (got - exact).abs() < 1e-6 * exact,
+            "v({t}) = {got}, exact {exact}"
+        );
         let i = sol.at("resistor.i", t).unwrap();
         assert!((i - (10.0 - exact) / 1000.0).abs() < 1e-9, "i({t}) = {i}");
     }
@@ -87,7 +90,7 @@ fn two_inertias_with_a_spring_damper_conserve_momentum() {
     let model = system! {
         name: "chain";
         inertia1 = Inertia { J: j1 };
-        coupling = SpringDamper { c: c, d: d };
+        coupling = SpringDamper { c, d };
         inertia2 = Inertia { J: j2 };
         connect(inertia1.flange_b, coupling.flange_a);
         connect(coupling.flange_b, inertia2.flange_a);
@@ -110,14 +113,21 @@ fn two_inertias_with_a_spring_damper_conserve_momentum() {
     let w1 = sol.get("inertia1.w").unwrap();
     let w2 = sol.get("inertia2.w").unwrap();
     for k in 0..w1.len() {
-        assert!((j1 * w1[k] + j2 * w2[k] - 2.0).abs() < 1e-8, "momentum at {}", sol.t()[k]);
+        assert!(
+            (j1 * w1[k] + j2 * w2[k] - 2.0).abs() < 1e-8,
+            "momentum at {}",
+            sol.t()[k]
+        );
     }
     // Relative motion: J_red phi'' + d phi' + c phi = 0, phi(0) = 0, phi'(0) = -2.
     let jr = j1 * j2 / (j1 + j2);
     for &t in &[0.3, 1.0, 2.5, 4.0] {
         let exact = damped(jr, d, c, 0.0, -2.0, t);
         let got = sol.at("coupling.phi_rel", t).unwrap();
-        assert!((got - exact).abs() < 1e-6 * exact.abs().max(1e-3), "phi_rel({t}) = {got}, exact {exact}");
+        assert!(
+            (got - exact).abs() < 1e-6 * exact.abs().max(1e-3),
+            "phi_rel({t}) = {got}, exact {exact}"
+        );
     }
 }
 
@@ -127,7 +137,7 @@ fn undamped_oscillator_keeps_its_energy_for_100_periods() {
     let model = system! {
         name: "undamped";
         fixed = Fixed::default();
-        spring = Spring { c: c };
+        spring = Spring { c };
         inertia = Inertia { J: 1.0, phi_start: 1.0 };
         connect(fixed.flange, spring.flange_a);
         connect(spring.flange_b, inertia.flange_a);
@@ -142,7 +152,10 @@ fn undamped_oscillator_keeps_its_energy_for_100_periods() {
             atol: rtol * 1e-2,
             ..SolverOptions::default()
         };
-        let sol = DaeProblem::new(&ssys, &[], (0.0, 100.0)).unwrap().solve(&opts).unwrap();
+        let sol = DaeProblem::new(&ssys, &[], (0.0, 100.0))
+            .unwrap()
+            .solve(&opts)
+            .unwrap();
         let s = sol.get_many(&["inertia.phi", "inertia.w"]).unwrap();
         let e0 = 0.5 * c;
         let mut worst = 0.0f64;
@@ -155,7 +168,10 @@ fn undamped_oscillator_keeps_its_energy_for_100_periods() {
     let (coarse, _) = drift(1e-6);
     let (fine, sol) = drift(1e-8);
     assert!(fine < 1e-4, "relative energy drift {fine:e} at rtol 1e-8");
-    assert!(fine < coarse / 20.0, "drift {fine:e} at rtol 1e-8 vs {coarse:e} at 1e-6");
+    assert!(
+        fine < coarse / 20.0,
+        "drift {fine:e} at rtol 1e-8 vs {coarse:e} at 1e-6"
+    );
     // The phase stays right too: phi(100) = cos(2 pi 100) = 1.
     assert!((sol.final_value("inertia.phi").unwrap() - 1.0).abs() < 1e-4);
 }

@@ -1,5 +1,7 @@
 //! Bad models give errors that name the variables and equations involved.
 
+#![allow(missing_docs)]
+
 use multibody::blocks::Constant;
 use multibody::prelude::*;
 use multibody::rotational::{Fixed, Flange, Inertia, Position, Spring};
@@ -45,8 +47,14 @@ fn an_inertia_fixed_at_both_flanges_is_structurally_singular() {
     assert!(err.contains("structurally singular"), "{err}");
     // The angle is fixed twice (the connection of the two fixed angles relates two
     // parameters only), so one torque is left undetermined.
-    assert!(err.contains("reduces to 0 = left.phi0 - right.phi0: no unknown is left in it"), "{err}");
-    assert!(err.contains("left.flange.tau") && err.contains("right.flange.tau"), "{err}");
+    assert!(
+        err.contains("reduces to 0 = left.phi0 - right.phi0: no unknown is left in it"),
+        "{err}"
+    );
+    assert!(
+        err.contains("left.flange.tau") && err.contains("right.flange.tau"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -68,7 +76,10 @@ fn two_position_sources_fighting_over_one_flange_are_named() {
     // Each position source forces the angle to its reference: the references end up
     // equated, and the torques of the sources are left undetermined.
     assert!(err.contains("reduces to 0 = -ref1.k + ref2.k"), "{err}");
-    assert!(err.contains("pos1.flange.tau") && err.contains("pos2.flange.tau"), "{err}");
+    assert!(
+        err.contains("pos1.flange.tau") && err.contains("pos2.flange.tau"),
+        "{err}"
+    );
 }
 
 component! {
@@ -90,7 +101,9 @@ fn failed_initialization_names_the_residual_and_the_iteration_variable() {
         part = Impossible::default();
     };
     let ssys = structural_simplify(&model).unwrap();
-    let err = DaeProblem::new(&ssys, &[], (0.0, 1.0)).unwrap_err().to_string();
+    let err = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("initialization did not converge"), "{err}");
     assert!(err.contains("in part: part.z^2 = part.x - 5"), "{err}");
     assert!(err.contains("part.z = "), "{err}");
@@ -110,7 +123,10 @@ fn unknown_names_get_suggestions() {
     let err = DaeProblem::new(&ssys, &[("inertia.pi", 1.0)], (0.0, 1.0))
         .unwrap_err()
         .to_string();
-    assert!(err.contains("no variable or parameter `inertia.pi`"), "{err}");
+    assert!(
+        err.contains("no variable or parameter `inertia.pi`"),
+        "{err}"
+    );
     assert!(err.contains("inertia.phi"), "{err}");
     let sol = DaeProblem::new(&ssys, &[], (0.0, 1.0))
         .unwrap()
@@ -134,7 +150,11 @@ fn conflicting_fixed_start_values_are_over_determined() {
     // phi and the spring's relative angle are the same thing: fixing both is too much.
     let err = DaeProblem::new(
         &ssys,
-        &[("inertia.phi", 1.0), ("spring.phi_rel", 2.0), ("inertia.w", 0.0)],
+        &[
+            ("inertia.phi", 1.0),
+            ("spring.phi_rel", 2.0),
+            ("inertia.w", 0.0),
+        ],
         (0.0, 1.0),
     )
     .unwrap_err()
@@ -160,7 +180,10 @@ fn solver_failure_says_when_and_why() {
         .solve(&SolverOptions::default())
         .unwrap_err();
     let text = err.to_string();
-    assert!(text.contains("model `blowup`: the solver failed at t = "), "{text}");
+    assert!(
+        text.contains("model `blowup`: the solver failed at t = "),
+        "{text}"
+    );
     let multibody::Error::Solve(e) = err else {
         panic!("expected a solver error: {text}")
     };

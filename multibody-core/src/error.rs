@@ -1,4 +1,5 @@
-//! The top-level error: one variant per phase, each with its own error type.
+//! The top-level error: one variant per phase, each with its own error type (boxed, so
+//! that `Result<_, Error>` stays small).
 
 use crate::codegen::CodegenError;
 use crate::model::ModelError;
@@ -11,23 +12,43 @@ use crate::solve::{InitError, SolutionError, SolveError};
 pub enum Error {
     /// The model's declarations or connections are wrong, or it is unbalanced.
     #[error(transparent)]
-    Model(#[from] ModelError),
+    Model(Box<ModelError>),
     /// Structural simplification failed (structural singularity, state selection).
     #[error(transparent)]
-    Simplify(#[from] SimplifyError),
+    Simplify(Box<SimplifyError>),
     /// Compiling expressions failed.
     #[error(transparent)]
-    Codegen(#[from] CodegenError),
+    Codegen(Box<CodegenError>),
     /// Consistent initial values could not be found.
     #[error(transparent)]
-    Init(#[from] InitError),
+    Init(Box<InitError>),
     /// The integrator failed.
     #[error(transparent)]
-    Solve(#[from] SolveError),
+    Solve(Box<SolveError>),
     /// A solution was asked for something it does not have.
     #[error(transparent)]
-    Solution(#[from] SolutionError),
+    Solution(Box<SolutionError>),
     /// Plotting failed.
     #[error(transparent)]
-    Plot(#[from] PlotError),
+    Plot(Box<PlotError>),
 }
+
+macro_rules! boxed_from {
+    ($($t:ty => $v:ident),*) => {$(
+        impl From<$t> for Error {
+            fn from(e: $t) -> Error {
+                Error::$v(Box::new(e))
+            }
+        }
+    )*};
+}
+
+boxed_from!(
+    ModelError => Model,
+    SimplifyError => Simplify,
+    CodegenError => Codegen,
+    InitError => Init,
+    SolveError => Solve,
+    SolutionError => Solution,
+    PlotError => Plot
+);

@@ -9,6 +9,7 @@
 pub mod codegen;
 mod error;
 pub mod expr;
+pub mod hash;
 pub mod model;
 pub mod names;
 pub mod plot;

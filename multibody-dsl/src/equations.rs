@@ -65,9 +65,10 @@ fn expression(e: &Expr, initial: bool) -> syn::Result<TokenStream> {
                     "connect belongs in `equation`, not `initial_equation`",
                 ));
             }
-            let a = &c.args[0];
-            let b = &c.args[1];
-            Ok(quote!(__s.connect_handles(&#a, &#b);))
+            let (a, b) = (&c.args[0], &c.args[1]);
+            let a = quote_spanned!(a.span()=> &#a);
+            let b = quote_spanned!(b.span()=> &#b);
+            Ok(quote!(__s.connect_handles(#a, #b);))
         }
         Expr::If(i) => {
             let cond = &i.cond;

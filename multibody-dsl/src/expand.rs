@@ -33,6 +33,53 @@ pub fn doc_text(docs: &[Attribute]) -> String {
     parts.join(" ")
 }
 
+/// Escapes unit brackets (`[kg.m2]`) so rustdoc does not read them as links; brackets
+/// holding code (`` [`Flange`] ``) stay links.
+pub fn escape_units(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let chars: Vec<char> = text.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        if chars[i] == '[' && (i == 0 || (chars[i - 1] != '\\' && chars[i - 1] != ']')) {
+            if let Some(len) = chars[i + 1..].iter().position(|&c| c == ']') {
+                let inner: String = chars[i + 1..i + 1 + len].iter().collect();
+                let followed_by_link = chars
+                    .get(i + 2 + len)
+                    .is_some_and(|&c| c == '(' || c == '[');
+                if !inner.contains('`') && !followed_by_link && !inner.is_empty() {
+                    out.push_str("\\[");
+                    out.push_str(&inner);
+                    out.push_str("\\]");
+                    i += len + 2;
+                    continue;
+                }
+            }
+        }
+        out.push(chars[i]);
+        i += 1;
+    }
+    out
+}
+
+/// Doc attributes with unit brackets escaped.
+fn docs_escaped(docs: &[Attribute]) -> TokenStream {
+    let mut out = TokenStream::new();
+    for a in docs {
+        if let syn::Meta::NameValue(nv) = &a.meta
+            && let Expr::Lit(syn::ExprLit {
+                lit: syn::Lit::Str(s),
+                ..
+            }) = &nv.value
+        {
+            let t = escape_units(&s.value());
+            out.extend(quote!(#[doc = #t]));
+        } else {
+            out.extend(quote!(#a));
+        }
+    }
+    out
+}
+
 fn default_doc(default: &Expr) -> TokenStream {
     let text = format!(
         "Default: `{}`.",
@@ -89,14 +136,14 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 default,
             } => {
                 let dd = default_doc(default);
-                fields.extend(quote!(#(#docs)* #dd pub #n: #ty,));
+                let desc = doc_text(docs);
+                let docs = docs_escaped(docs);
+                fields.extend(quote!(#docs #dd pub #n: #ty,));
                 defaults.extend(quote!(#n: #default,));
-                handle_fields
-                    .extend(quote!(#(#docs)* pub #n: <#ty as #p::ParameterType>::Symbolic,));
+                handle_fields.extend(quote!(#docs pub #n: <#ty as #p::ParameterType>::Symbolic,));
                 let s = n.to_string();
                 handle_init
                     .extend(quote!(#n: <#ty as #p::ParameterType>::at(&#p::member(path, #s)),));
-                let desc = doc_text(docs);
                 let mods = variable_modifiers(modifiers);
                 parameters.extend(quote!(
                     let #n = #p::ParameterType::declare(
@@ -113,13 +160,15 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 default,
             } => {
                 let dd = default_doc(default);
-                fields.extend(quote!(#(#docs)* #dd pub #n: #ty,));
+                let docs = docs_escaped(docs);
+                fields.extend(quote!(#docs #dd pub #n: #ty,));
                 defaults.extend(quote!(#n: #default,));
                 structural.extend(quote!(let #n: #ty = ::core::clone::Clone::clone(&self.#n);));
             }
             Item::Connector { docs, name: n, ty } => {
                 let s = n.to_string();
-                handle_fields.extend(quote!(#(#docs)* pub #n: <#ty as #p::Connector>::Handle,));
+                let docs = docs_escaped(docs);
+                handle_fields.extend(quote!(#docs pub #n: <#ty as #p::Connector>::Handle,));
                 handle_init
                     .extend(quote!(#n: <#ty as #p::Connector>::handle(&#p::member(path, #s)),));
                 connectors.extend(quote!(
@@ -135,7 +184,8 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 let s = n.to_string();
                 let desc = doc_text(docs);
                 let mods = variable_modifiers(modifiers);
-                handle_fields.extend(quote!(#(#docs)* pub #n: #ty,));
+                let docs = docs_escaped(docs);
+                handle_fields.extend(quote!(#docs pub #n: #ty,));
                 handle_init
                     .extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
                 variables.extend(quote!(
@@ -151,8 +201,8 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 value,
             } => {
                 let s = n.to_string();
-                handle_fields
-                    .extend(quote!(#(#docs)* pub #n: <#ty as #p::TypedComponent>::Handle,));
+                let docs = docs_escaped(docs);
+                handle_fields.extend(quote!(#docs pub #n: <#ty as #p::TypedComponent>::Handle,));
                 handle_init.extend(
                     quote!(#n: <#ty as #p::TypedComponent>::handle(&#p::member(path, #s)),),
                 );
@@ -214,8 +264,9 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
     let handle_doc = format!(
         "Handle of a [`{name}`] instance: its connectors, variables and parameters by name."
     );
+    let attrs = docs_escaped(attrs);
     Ok(quote! {
-        #(#attrs)*
+        #attrs
         #[derive(Clone, Debug)]
         #[allow(non_snake_case)]
         #vis struct #name { #fields }
@@ -283,8 +334,9 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
     if let Some((role, ty)) = &def.signal {
         let kind = role_tokens(*role);
         let class = format!("signal:{ty}");
+        let attrs = docs_escaped(attrs);
         return Ok(quote! {
-            #(#attrs)*
+            #attrs
             #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
             #vis struct #name;
 
@@ -317,15 +369,17 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
         let s = n.to_string();
         let vd = doc_text(docs);
         let kind = role_tokens(v.role);
-        fields.extend(quote!(#(#docs)* pub #n: #ty,));
+        let docs = docs_escaped(docs);
+        fields.extend(quote!(#docs pub #n: #ty,));
         init.extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
         build.extend(quote!(
             __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd));
         ));
     }
     let handle_doc = format!("Handle of a [`{name}`] connector instance: its variables by name.");
+    let attrs = docs_escaped(attrs);
     Ok(quote! {
-        #(#attrs)*
+        #attrs
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         #vis struct #name;
 
@@ -404,12 +458,15 @@ pub fn system(def: &SystemDef) -> syn::Result<TokenStream> {
                 let s = n.to_string();
                 let v = with_defaults(value);
                 body.extend(quote_spanned!(value.span()=>
-                    #[allow(unused_variables)]
+                    #[allow(unused_variables, clippy::needless_update)]
                     let #n = __s.add_typed(#s, &(#v));
                 ));
             }
             SystemItem::Connect { a, b } => {
-                body.extend(quote!(__s.connect_handles(&#a, &#b);));
+                // Spanned at the second connector, where a type mismatch is reported.
+                let a = quote_spanned!(a.span()=> &#a);
+                let b = quote_spanned!(b.span()=> &#b);
+                body.extend(quote!(__s.connect_handles(#a, #b);));
             }
             SystemItem::Equation { initial, lhs, rhs } => {
                 let call = if *initial {

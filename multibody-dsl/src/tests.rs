@@ -193,3 +193,15 @@ fn system_items_and_struct_defaults() {
     let bad = crate::system(quote! { a = A::default(); a = A::default(); }).to_string();
     assert!(bad.contains("declared twice"), "{bad}");
 }
+
+#[test]
+fn unit_brackets_are_escaped_but_links_are_kept() {
+    use crate::expand::escape_units;
+    assert_eq!(escape_units("Inertia [kg.m2]."), "Inertia \\[kg.m2\\].");
+    assert_eq!(escape_units("See [`Flange`]."), "See [`Flange`].");
+    assert_eq!(
+        escape_units("A [link](x) and [ref][r]"),
+        "A [link](x) and [ref][r]"
+    );
+    assert_eq!(escape_units("no brackets"), "no brackets");
+}

@@ -1,5 +1,5 @@
 //! Analog electrical circuits (MSL `Modelica.Electrical.Analog`): pins carry a
-//! potential `v` [V] and a current `i` [A] (positive into the component).
+//! potential `v` \[V\] and a current `i` \[A\] (positive into the component).
 
 use crate::blocks::RealInput;
 use crate::prelude::*;

@@ -1,5 +1,5 @@
 //! 1-D rotational mechanics (MSL `Modelica.Mechanics.Rotational`): flanges carry an
-//! absolute angle `phi` [rad] and a cut torque `tau` [N.m] (positive into the
+//! absolute angle `phi` \[rad\] and a cut torque `tau` \[N.m\] (positive into the
 //! component).
 
 mod components;

@@ -1,5 +1,5 @@
 //! 1-D translational mechanics (MSL `Modelica.Mechanics.Translational`): flanges
-//! carry a position `s` [m] and a cut force `f` [N] (positive into the component).
+//! carry a position `s` \[m\] and a cut force `f` \[N\] (positive into the component).
 
 use crate::blocks::{RealInput, RealOutput};
 use crate::prelude::*;

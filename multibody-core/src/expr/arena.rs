@@ -1,6 +1,8 @@
 //! The arena: node storage, hash-consing and simplification on construction.
 
-use std::collections::HashMap;
+use std::hash::BuildHasher;
+
+use hashbrown::HashTable;
 
 use super::{Cmp, Func1, Func2, Id, Node};
 
@@ -10,7 +12,14 @@ use super::{Cmp, Func1, Func2, Id, Node};
 #[derive(Clone, Debug)]
 pub struct Arena {
     nodes: Vec<Node>,
-    map: HashMap<Node, Id>,
+    /// Hash of each node (for the table's growth).
+    hashes: Vec<u64>,
+    /// Node ids by hash: each node is stored once, in `nodes`.
+    table: HashTable<u32>,
+}
+
+fn hash_node(n: &Node) -> u64 {
+    crate::hash::FastBuild::default().hash_one(n)
 }
 
 impl Default for Arena {
@@ -33,7 +42,8 @@ impl Arena {
     pub fn new() -> Self {
         let mut a = Arena {
             nodes: Vec::new(),
-            map: HashMap::new(),
+            hashes: Vec::new(),
+            table: HashTable::new(),
         };
         a.constant(0.0);
         a.constant(1.0);
@@ -56,13 +66,17 @@ impl Arena {
     }
 
     fn intern(&mut self, n: Node) -> Id {
-        if let Some(&id) = self.map.get(&n) {
-            return id;
+        let h = hash_node(&n);
+        let nodes = &self.nodes;
+        if let Some(&id) = self.table.find(h, |&i| nodes[i as usize] == n) {
+            return Id(id);
         }
-        let id = Id(self.nodes.len() as u32);
-        self.nodes.push(n.clone());
-        self.map.insert(n, id);
-        id
+        let id = self.nodes.len() as u32;
+        self.nodes.push(n);
+        self.hashes.push(h);
+        let hashes = &self.hashes;
+        self.table.insert_unique(h, id, |&i| hashes[i as usize]);
+        Id(id)
     }
 
     /// The constant 0.

@@ -1,6 +1,6 @@
 //! Symbolic differentiation: with respect to a leaf, and with respect to time.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use super::{Arena, Cmp, Func1, Func2, Id, Node};
 
@@ -17,7 +17,7 @@ impl Arena {
     /// Partial derivative of `e` with respect to the leaf `wrt` (a variable, parameter,
     /// time or `der(x)` node; `der(x)` counts as independent of `x`).
     pub fn diff(&mut self, e: Id, wrt: Id) -> Id {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         self.diff_rec(e, LeafRule::Wrt(wrt), &mut memo)
     }
 
@@ -29,7 +29,7 @@ impl Arena {
 
     /// Total time derivative of `e`: variables `x` become `der(x)`.
     pub fn time_derivative(&mut self, e: Id) -> Id {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         self.diff_rec(e, LeafRule::Time, &mut memo)
     }
 

@@ -1,6 +1,6 @@
 //! Direct numeric evaluation (for folding and checks; compiled tapes do the fast work).
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use super::{Arena, Id, Node};
 
@@ -8,7 +8,7 @@ impl Arena {
     /// Evaluates `e`; `leaf` gives each leaf's value or `None` when it is unknown, which
     /// makes the whole result `None`.
     pub fn eval(&self, e: Id, leaf: &dyn Fn(&Node) -> Option<f64>) -> Option<f64> {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         self.eval_rec(e, leaf, &mut memo)
     }
 

@@ -1,6 +1,6 @@
 //! The process-wide arena behind [`Expr`], with named symbols as leaves.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 use std::sync::{LazyLock, Mutex, MutexGuard};
@@ -35,6 +35,11 @@ impl Global {
     pub(crate) fn name(&self, sym: u32) -> &str {
         &self.symbols[sym as usize]
     }
+
+    /// Number of interned symbols.
+    pub(crate) fn n_symbols(&self) -> usize {
+        self.symbols.len()
+    }
 }
 
 impl NameResolver for Global {
@@ -50,7 +55,7 @@ static GLOBAL: LazyLock<Mutex<Global>> = LazyLock::new(|| {
     Mutex::new(Global {
         arena: Arena::new(),
         symbols: Vec::new(),
-        symbol_ids: HashMap::new(),
+        symbol_ids: HashMap::default(),
     })
 });
 
@@ -122,6 +127,14 @@ impl Expr {
         let g = global();
         match g.arena.node(self.0) {
             Node::Var(s) | Node::Param(s) => Some(g.name(*s).to_string()),
+            _ => None,
+        }
+    }
+
+    /// The symbol id when this is a variable or parameter leaf.
+    pub(crate) fn symbol(self) -> Option<u32> {
+        match with(|a| a.node(self.0).clone()) {
+            Node::Var(s) | Node::Param(s) => Some(s),
             _ => None,
         }
     }

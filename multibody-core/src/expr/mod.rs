@@ -22,6 +22,7 @@ pub use arena::Arena;
 pub use display::NameResolver;
 pub use global::{Expr, symbol_name};
 pub use solve::LinearSolve;
+pub use subst::ImportMemo;
 
 /// Index of a node in an [`Arena`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -1,6 +1,6 @@
 //! Solving an equation for one of its leaves when it is linear in it.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use super::{Arena, Id};
 
@@ -21,7 +21,7 @@ impl Arena {
         if self.as_const(a) == Some(0.0) || self.contains(a, x) {
             return None;
         }
-        let mut map = HashMap::new();
+        let mut map = HashMap::default();
         map.insert(x, self.zero());
         let b = self.substitute_leaves(e, &map);
         let nb = self.neg(b);

@@ -1,6 +1,6 @@
 //! Substitution, leaf sets and copying between arenas.
 
-use std::collections::{HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
 
 use super::{Arena, Id, Node, is_leaf};
 
@@ -9,7 +9,7 @@ impl Arena {
     /// in `map` (usually leaves). A replaced `x` also replaces `der(x)` by the time
     /// derivative of its image, unless `der(x)` has an entry of its own.
     pub fn substitute(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         self.subst_rec(e, map, &mut memo, false)
     }
 
@@ -17,7 +17,7 @@ impl Arena {
     /// replaced only by an entry of their own, never through `x` (as in an index-reduced
     /// system, where `x` and `der(x)` are distinct unknowns).
     pub fn substitute_leaves(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         self.subst_rec(e, map, &mut memo, true)
     }
 
@@ -131,7 +131,7 @@ impl Arena {
     /// The distinct leaves of `e` (variables, parameters, time, derivatives), sorted.
     /// `der(x)` is a leaf of its own; `x` is not listed for it.
     pub fn leaves(&self, e: Id) -> Vec<Id> {
-        let mut seen = HashSet::new();
+        let mut seen = HashSet::default();
         let mut out = Vec::new();
         let mut stack = vec![e];
         while let Some(x) = stack.pop() {
@@ -151,7 +151,7 @@ impl Arena {
 
     /// Whether `leaf` occurs in `e`.
     pub fn contains(&self, e: Id, leaf: Id) -> bool {
-        let mut seen = HashSet::new();
+        let mut seen = HashSet::default();
         let mut stack = vec![e];
         while let Some(x) = stack.pop() {
             if x == leaf {
@@ -167,7 +167,7 @@ impl Arena {
 
     /// Whether any of `leaves` (a set) occurs in `e`.
     pub fn contains_any(&self, e: Id, leaves: &HashSet<Id>) -> bool {
-        let mut seen = HashSet::new();
+        let mut seen = HashSet::default();
         let mut stack = vec![e];
         while let Some(x) = stack.pop() {
             if leaves.contains(&x) {
@@ -190,9 +190,9 @@ impl Arena {
         src: &Arena,
         e: Id,
         leaf: &mut dyn FnMut(&mut Arena, &Node) -> Id,
-        memo: &mut HashMap<Id, Id>,
+        memo: &mut ImportMemo,
     ) -> Id {
-        if let Some(&r) = memo.get(&e) {
+        if let Some(r) = memo.get(e) {
             return r;
         }
         let r = match src.node(e) {
@@ -247,5 +247,41 @@ impl Arena {
         };
         memo.insert(e, r);
         r
+    }
+}
+
+/// The memo of [`Arena::import`]: the copy of each source node, indexed densely by the
+/// source node's id (much faster than hashing for large models).
+#[derive(Clone, Debug, Default)]
+pub struct ImportMemo(Vec<u32>);
+
+impl ImportMemo {
+    /// An empty memo.
+    pub fn new() -> Self {
+        ImportMemo(Vec::new())
+    }
+
+    /// The copy of `e`, if made.
+    #[inline]
+    pub fn get(&self, e: Id) -> Option<Id> {
+        match self.0.get(e.index()) {
+            Some(&r) if r != u32::MAX => Some(Id(r)),
+            _ => None,
+        }
+    }
+
+    /// Records the copy of `e`.
+    #[inline]
+    pub fn insert(&mut self, e: Id, r: Id) {
+        let i = e.index();
+        if i >= self.0.len() {
+            self.0.resize((i + 1).max(self.0.len() * 2), u32::MAX);
+        }
+        self.0[i] = r.0;
+    }
+
+    /// Forgets every copy.
+    pub fn clear(&mut self) {
+        self.0.clear();
     }
 }

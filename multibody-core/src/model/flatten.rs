@@ -1,8 +1,8 @@
 //! Flattening: the system tree becomes scalar equations over numbered variables.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
-use crate::expr::{Arena, Expr, Id, NameResolver, Node};
+use crate::expr::{Arena, Expr, Id, ImportMemo, NameResolver, Node};
 use crate::names::closest;
 
 use super::error::ModelError;
@@ -135,12 +135,28 @@ struct ConnectorInfo {
 struct Flattener<'g> {
     g: &'g crate::expr::global::Global,
     flat: FlatSystem,
-    var_of_sym: HashMap<u32, u32>,
-    param_of_sym: HashMap<u32, u32>,
+    /// Flat index of each declared variable and parameter, by global symbol.
+    var_of_sym: Vec<u32>,
+    param_of_sym: Vec<u32>,
     connectors: Vec<ConnectorInfo>,
     connector_of_path: HashMap<String, usize>,
-    memo: HashMap<Id, Id>,
+    memo: ImportMemo,
+    /// Declarations whose names were never interned (pushed by hand): for duplicates.
+    unnamed: HashMap<String, u32>,
     errors: Vec<ModelError>,
+}
+
+/// Records `idx` for symbol `sym`; false if the symbol is declared already.
+fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
+    let s = sym as usize;
+    if s >= table.len() {
+        table.resize(s + 1, u32::MAX);
+    }
+    if table[s] != u32::MAX {
+        return false;
+    }
+    table[s] = idx;
+    true
 }
 
 fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
@@ -169,11 +185,12 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             starts: Vec::new(),
             parameter_values: Vec::new(),
         },
-        var_of_sym: HashMap::new(),
-        param_of_sym: HashMap::new(),
+        var_of_sym: vec![u32::MAX; g.n_symbols()],
+        param_of_sym: vec![u32::MAX; g.n_symbols()],
         connectors: Vec::new(),
-        connector_of_path: HashMap::new(),
-        memo: HashMap::new(),
+        connector_of_path: HashMap::default(),
+        memo: ImportMemo::new(),
+        unnamed: HashMap::default(),
         errors: Vec::new(),
     };
     // Pass 1: declarations.
@@ -252,9 +269,13 @@ impl Flattener<'_> {
     fn declare(&mut self, s: &System) {
         let mut conn_vars = Vec::new();
         for v in &s.variables {
-            let sym = self.symbol_id_locked(&v.name);
             let idx = self.flat.variables.len() as u32;
-            if self.var_of_sym.insert(sym, idx).is_some() {
+            let sym = v.symbol.or_else(|| self.g.lookup(&v.name));
+            let duplicate = match sym {
+                Some(sym) => !claim(&mut self.var_of_sym, sym, idx),
+                None => self.unnamed.insert(v.name.clone(), idx).is_some(),
+            };
+            if duplicate {
                 self.errors.push(ModelError::DuplicateName(v.name.clone()));
             }
             self.flat.variables.push(v.clone());
@@ -263,9 +284,13 @@ impl Flattener<'_> {
             }
         }
         for p in &s.parameters {
-            let sym = self.symbol_id_locked(&p.name);
             let idx = self.flat.parameters.len() as u32;
-            if self.param_of_sym.insert(sym, idx).is_some() {
+            let sym = p.symbol.or_else(|| self.g.lookup(&p.name));
+            let duplicate = match sym {
+                Some(sym) => !claim(&mut self.param_of_sym, sym, idx),
+                None => self.unnamed.insert(p.name.clone(), idx).is_some(),
+            };
+            if duplicate {
                 self.errors.push(ModelError::DuplicateName(p.name.clone()));
             }
             self.flat.parameters.push(p.clone());
@@ -286,14 +311,6 @@ impl Flattener<'_> {
         }
     }
 
-    /// Symbol id of a declared name, looked up in the already-locked global table. A name
-    /// never interned (a `Variable` pushed by hand) gets an id that matches no symbol.
-    fn symbol_id_locked(&self, name: &str) -> u32 {
-        self.g.lookup(name).unwrap_or(
-            u32::MAX - self.flat.variables.len() as u32 - self.flat.parameters.len() as u32,
-        )
-    }
-
     /// `lhs - rhs` of an equation in the local arena (built there, so the global lock
     /// held by the flattener is never taken twice).
     fn translate_equation(&mut self, eq: &Equation, origin: &Origin) -> Option<Id> {
@@ -311,14 +328,14 @@ impl Flattener<'_> {
             &g.arena,
             e.id(),
             &mut |a: &mut Arena, n: &Node| match n {
-                Node::Var(s) => match var_of_sym.get(s) {
+                Node::Var(s) => match var_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
                     Some(&i) => a.var(i),
                     None => {
                         missing.get_or_insert(("variable", *s));
                         a.zero()
                     }
                 },
-                Node::Param(s) => match param_of_sym.get(s) {
+                Node::Param(s) => match param_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
                     Some(&i) => a.param(i),
                     None => {
                         missing.get_or_insert(("parameter", *s));
@@ -374,7 +391,7 @@ impl Flattener<'_> {
         let nv = self.flat.variables.len();
         let mut pot_parent: Vec<usize> = (0..nv).collect();
         // Flow connection sets over elements (connector, inside?).
-        let mut elem_index: HashMap<(usize, bool), usize> = HashMap::new();
+        let mut elem_index: HashMap<(usize, bool), usize> = HashMap::default();
         let mut elems: Vec<(usize, bool)> = Vec::new();
         let mut elem_parent: Vec<usize> = Vec::new();
         for s in order {
@@ -462,7 +479,7 @@ impl Flattener<'_> {
             }
         }
         // Flow sums, one per set and flow position.
-        let mut sets: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut sets: HashMap<usize, Vec<usize>> = HashMap::default();
         let mut set_order = Vec::new();
         for i in 0..elems.len() {
             let r = union_find_root(&mut elem_parent, i);

@@ -129,6 +129,7 @@ impl System {
     pub fn variable(&mut self, mut v: Variable) -> Expr {
         v.name = self.full(&v.name);
         let e = Expr::var(&v.name);
+        v.symbol = e.symbol();
         self.variables.push(v);
         e
     }
@@ -148,6 +149,7 @@ impl System {
     pub fn parameter(&mut self, mut p: Parameter) -> Expr {
         p.name = self.full(&p.name);
         let e = Expr::param(&p.name);
+        p.symbol = e.symbol();
         self.parameters.push(p);
         e
     }

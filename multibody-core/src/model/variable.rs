@@ -65,6 +65,8 @@ pub struct Variable {
     pub state_priority: f64,
     /// Role in connections (default: [`VarKind::Internal`]).
     pub kind: VarKind,
+    /// The interned symbol of `name`, recorded when declared in a system.
+    pub(crate) symbol: Option<u32>,
 }
 
 impl Variable {
@@ -79,6 +81,7 @@ impl Variable {
             unit: String::new(),
             state_priority: 0.0,
             kind: VarKind::Internal,
+            symbol: None,
         }
     }
 
@@ -148,6 +151,8 @@ pub struct Parameter {
     pub description: String,
     /// Unit (default: empty).
     pub unit: String,
+    /// The interned symbol of `name`, recorded when declared in a system.
+    pub(crate) symbol: Option<u32>,
 }
 
 impl Parameter {
@@ -159,6 +164,7 @@ impl Parameter {
             fixed: true,
             description: String::new(),
             unit: String::new(),
+            symbol: None,
         }
     }
 

@@ -7,7 +7,7 @@
 //! others become observed expressions `±representative`. A set that contains a constant
 //! equation is replaced by that constant entirely.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, Node};
 use crate::model::{FlatSystem, VarKind};
@@ -160,13 +160,13 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         }
     }
     // Members of each set.
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::default();
     for x in 0..nv as u32 {
         let (r, _) = sets.find(x);
         members.entry(r).or_default().push(x);
     }
     let mut replaced: Vec<Option<Id>> = vec![None; nv];
-    let mut map: HashMap<Id, Id> = HashMap::new();
+    let mut map: HashMap<Id, Id> = HashMap::default();
     let mut roots: Vec<u32> = members.keys().copied().collect();
     roots.sort_unstable();
     for root in roots {
@@ -231,7 +231,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         }
     }
     // Apply the substitution to the remaining equations.
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     for (e, eq) in flat.equations.iter_mut().enumerate() {
         if !removed[e] {
             eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
@@ -268,7 +268,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         is_derivative[v as usize] = true;
         removed[e] = true;
     }
-    let mut dmap: HashMap<Id, Id> = HashMap::new();
+    let mut dmap: HashMap<Id, Id> = HashMap::default();
     for (x, d) in derivative.iter().enumerate() {
         if let Some(v) = *d {
             let xl = flat.arena.var(x as u32);
@@ -278,7 +278,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         }
     }
     if !dmap.is_empty() {
-        let mut memo = HashMap::new();
+        let mut memo = HashMap::default();
         for (e, eq) in flat.equations.iter_mut().enumerate() {
             if !removed[e] {
                 eq.residual = flat.arena.substitute_memo(eq.residual, &dmap, &mut memo);

@@ -8,7 +8,7 @@
 //! it is large, in which case all its unknowns are left to the solver's sparse Newton;
 //! a nonlinear block leaves its tearing variables to the solver.
 
-use std::collections::{HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
 
 use crate::expr::{Arena, Id, Node};
 use crate::structure::BipartiteGraph;
@@ -206,7 +206,7 @@ fn scalar_block(arena: &mut Arena, r: Id, e: usize, x: Id, out: &mut Schedule) {
             });
         }
         Some(sol) => {
-            let mut map = HashMap::new();
+            let mut map = HashMap::default();
             map.insert(x, arena.zero());
             let c = arena.substitute_leaves(r, &map);
             out.steps.push(Step::LinearSolve {

@@ -1,10 +1,10 @@
 //! `structural_simplify`: from a model to states, algebraic unknowns and residuals.
 //!
 //! The steps, each in its own file: flattening and the balance check (in
-//! [`crate::model`]), [`alias`] elimination, index reduction and state selection
-//! ([`reduce`], on the integer algorithms of [`crate::structure`]), [`causalize`]
-//! (matching, BLT, tearing, where linear blocks are solved), and the assembly of the
-//! [`SimplifiedSystem`] with its compiled functions.
+//! [`crate::model`]), alias elimination (`alias.rs`), index reduction and state
+//! selection (`reduce.rs`, on the integer algorithms of [`crate::structure`]),
+//! causalization ([`mod@causalize`]: matching, BLT, tearing, where linear blocks are
+//! solved), and the assembly of the [`SimplifiedSystem`] with its compiled functions.
 
 mod alias;
 pub mod causalize;
@@ -15,7 +15,7 @@ mod system;
 #[cfg(test)]
 mod tests;
 
-use std::collections::{HashMap, HashSet};
+use crate::hash::{HashMap, HashSet};
 use std::time::Instant;
 
 pub use causalize::{BlockKind, LinearBlockLimits};
@@ -32,19 +32,11 @@ use causalize::{Temporaries, causalize};
 use reduce::{ReduceInput, reduce};
 
 /// Options of [`structural_simplify_with`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Default)]
 pub struct SimplifyOptions {
     /// Where linear algebraic blocks are solved (default: [`LinearBlockLimits::default`],
     /// blocks up to 400 equations with at most 24 tearing variables inside).
     pub linear_blocks: LinearBlockLimits,
-}
-
-impl Default for SimplifyOptions {
-    fn default() -> Self {
-        SimplifyOptions {
-            linear_blocks: LinearBlockLimits::default(),
-        }
-    }
 }
 
 /// Simplifies a model with default options: see [`structural_simplify_with`].

@@ -2,7 +2,7 @@
 //! integer graph for Pantelides, symbolic differentiation of the equations it marks, and
 //! dummy-derivative state selection.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, Node};
 use crate::structure::BipartiteGraph;
@@ -172,7 +172,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         arena,
         names,
         slots: Vec::new(),
-        slot_of: HashMap::new(),
+        slot_of: HashMap::default(),
     };
     for (i, &k) in kept.iter().enumerate() {
         if k {
@@ -287,10 +287,23 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     };
     for level in &selection.levels {
         if level.candidates.len() > level.equations.len() {
+            // Does the Jacobian of the level's equations with respect to the chosen
+            // dummies depend on the configuration? Only entries that exist are looked at.
+            let dummy_leaves: HashMap<Id, usize> = level
+                .dummies
+                .iter()
+                .map(|&v| (table.slots[v].leaf, v))
+                .collect();
             let varying = level.equations.iter().any(|&e| {
-                level.dummies.iter().any(|&v| {
-                    let leaf = table.slots[v].leaf;
-                    let c = table.arena.diff(eqs[e].residual, leaf);
+                let r = eqs[e].residual;
+                let present: Vec<Id> = table
+                    .arena
+                    .leaves(r)
+                    .into_iter()
+                    .filter(|l| dummy_leaves.contains_key(l))
+                    .collect();
+                present.into_iter().any(|leaf| {
+                    let c = table.arena.diff(r, leaf);
                     table
                         .arena
                         .leaves(c)

@@ -1,7 +1,7 @@
 //! The simplified system: unknowns, mass matrix, residuals, observed variables and the
 //! compiled functions, with a translation report.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 use std::fmt;
 
 use crate::codegen::dae::CompiledDae;

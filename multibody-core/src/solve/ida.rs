@@ -1213,9 +1213,9 @@ mod tests {
                 &osc_settings(solver),
                 &OutputMode::Times(times.clone()),
                 &mut |t, y, _| {
-                out.push((t, y.to_vec()));
-                true
-            },
+                    out.push((t, y.to_vec()));
+                    true
+                },
             )
             .unwrap();
             assert_eq!(out.len(), times.len() + 1);

@@ -10,7 +10,9 @@
 //! like the DAE, and its iteration variables solved by damped Newton with the exact
 //! sparse Jacobian; other start values serve as guesses.
 
-use std::collections::{HashMap, VecDeque};
+use std::collections::VecDeque;
+
+use crate::hash::HashMap;
 
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, Node};
@@ -363,10 +365,10 @@ fn augment(
     var_to_eq: &mut [Option<usize>],
     eq_to_var: &mut [Option<usize>],
 ) -> bool {
-    let mut parent: HashMap<usize, usize> = HashMap::new(); // var -> equation reaching it
+    let mut parent: HashMap<usize, usize> = HashMap::default(); // var -> equation reaching it
     let mut queue = VecDeque::new();
     queue.push_back(root);
-    let mut seen_eq = std::collections::HashSet::new();
+    let mut seen_eq = crate::hash::HashSet::default();
     seen_eq.insert(root);
     while let Some(e) = queue.pop_front() {
         for &v in &adj[e] {

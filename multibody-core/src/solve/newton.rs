@@ -132,9 +132,7 @@ pub(crate) fn newton(
             if tape.eval(inputs, &mut ws, &mut f_trial).is_err()
                 || !norm2(&f_trial[..n]).is_finite()
             {
-                for i in 0..n {
-                    inputs[z_offset + i] = z_old[i];
-                }
+                inputs[z_offset..z_offset + n].copy_from_slice(&z_old);
                 return fail(it + 1, &f, "no step reduces the residuals".into());
             }
         }

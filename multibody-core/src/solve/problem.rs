@@ -1,7 +1,7 @@
 //! A DAE problem: a simplified system with parameter values, initial values and a time
 //! span, solved by IDA.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 use std::sync::Arc;
 
 use crate::Error;
@@ -157,8 +157,8 @@ impl<'a> DaeProblem<'a> {
                 suggestions: closest(name, candidates, 3),
             }
         };
-        let mut param_overrides = HashMap::new();
-        let mut start_overrides = HashMap::new();
+        let mut param_overrides = HashMap::default();
+        let mut start_overrides = HashMap::default();
         for &(name, v) in values {
             if let Some(&j) = param_index.get(name) {
                 param_overrides.insert(j, v);

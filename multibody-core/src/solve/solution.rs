@@ -1,7 +1,7 @@
 //! The solution of a DAE problem: any variable of the model by name, at the output
 //! times or interpolated at any time, and CSV export.
 
-use std::collections::HashMap;
+use crate::hash::HashMap;
 use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;

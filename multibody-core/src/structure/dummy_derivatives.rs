@@ -177,7 +177,9 @@ fn select<'a>(
     candidates: &[usize],
     vars_of: impl Fn(usize) -> &'a Vec<usize>,
 ) -> Vec<usize> {
-    use std::collections::{HashMap, VecDeque};
+    use std::collections::VecDeque;
+
+    use crate::hash::HashMap;
     let cand_index: HashMap<usize, usize> = candidates
         .iter()
         .enumerate()

@@ -86,7 +86,7 @@ fn double_pendulum_keeps_four_states() {
     g.add_equation(vec![0, 1, 2, 3]);
     let red = pantelides(&g, &var_diff).unwrap();
     let decl: Vec<usize> = (0..14)
-        .map(|v| if v >= 8 && v < 12 { v - 4 } else { v })
+        .map(|v| if (8..12).contains(&v) { v - 4 } else { v })
         .collect();
     let sel = dummy_derivatives(&red, 6, &ranks(14, &decl, &[])).unwrap();
     // Positions x1, x2 and velocities vx1, vx2 stay (y's are declared later).

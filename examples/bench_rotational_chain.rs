@@ -1,0 +1,278 @@
+//! Benchmark: a chain of N inertias joined by spring-dampers, compiled and solved to
+//! t = 10, against a hand-written residual and analytic Jacobian of the same chain
+//! integrated by the same IDA, linear solver and tolerances in this process (both store
+//! the trajectory at every step).
+//!
+//! `cargo run --release --example bench_rotational_chain [N ...]` prints one JSON object
+//! per line: `n`, `flatten_s`, `simplify_s`, `codegen_s`, `init_s`, `solve_s`,
+//! `compile_s` (flatten through codegen), `steps`, `baseline_solve_s`, `baseline_steps`
+//! and `solve_ratio` (ours / baseline).
+
+use std::time::Instant;
+
+use multibody::LinearSolverChoice;
+use multibody::prelude::*;
+use multibody::rotational::{Fixed, Inertia, SpringDamper};
+use multibody::solve::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
+
+const J: f64 = 1.0;
+const C: f64 = 1e3;
+const D: f64 = 1.0;
+const T_END: f64 = 10.0;
+const RTOL: f64 = 1e-6;
+const ATOL: f64 = 1e-8;
+
+/// fixed - sd1 - inertia1 - sd2 - inertia2 - ... - inertiaN; the last inertia starts
+/// displaced by 1 rad, the others at rest in place.
+fn chain(n: usize) -> System {
+    let mut m = System::new(format!("chain{n}"));
+    let fixed = m.add_typed("fixed", &Fixed::default());
+    let mut prev = fixed.flange;
+    for k in 1..=n {
+        let sd = m.add_typed(
+            &format!("sd{k}"),
+            &SpringDamper {
+                c: C,
+                d: D,
+                ..Default::default()
+            },
+        );
+        let phi_start = if k == n { 1.0 } else { 0.0 };
+        let inertia = m.add_typed(
+            &format!("inertia{k}"),
+            &Inertia {
+                J,
+                phi_start,
+                ..Default::default()
+            },
+        );
+        m.connect_handles(&prev, &sd.flange_a);
+        m.connect_handles(&sd.flange_b, &inertia.flange_a);
+        prev = inertia.flange_b;
+    }
+    m
+}
+
+/// The same chain by hand in absolute coordinates: u = [phi_1..phi_N, w_1..w_N],
+/// `0 = phi' - w`, `0 = J w' - (tau_{k+1} - tau_k)` with
+/// `tau_k = c (phi_k - phi_{k-1}) + d (w_k - w_{k-1})` (phi_0 = w_0 = 0, tau_{N+1} = 0).
+struct Baseline {
+    n: usize,
+}
+
+impl Baseline {
+    fn tau(&self, y: &[f64], k: usize) -> f64 {
+        // k in 1..=n+1
+        let n = self.n;
+        if k == n + 1 {
+            return 0.0;
+        }
+        let (phi, w) = (y[k - 1], y[n + k - 1]);
+        let (phi0, w0) = if k == 1 {
+            (0.0, 0.0)
+        } else {
+            (y[k - 2], y[n + k - 2])
+        };
+        C * (phi - phi0) + D * (w - w0)
+    }
+}
+
+impl DaeFunctions for Baseline {
+    fn len(&self) -> usize {
+        2 * self.n
+    }
+    fn residual(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        yp: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let n = self.n;
+        for k in 1..=n {
+            out[k - 1] = yp[k - 1] - y[n + k - 1];
+            out[n + k - 1] = J * yp[n + k - 1] - (self.tau(y, k + 1) - self.tau(y, k));
+        }
+        Ok(())
+    }
+    fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+        let n = self.n;
+        let mut col_ptr = vec![0];
+        let mut rows = Vec::new();
+        // Column j = phi_j: rows n+j-1 -1.., torque rows j-1, j, j+1 (0-based n + ...).
+        for j in 0..n {
+            let mut r = vec![j];
+            for k in j.saturating_sub(1)..=(j + 1).min(n - 1) {
+                r.push(n + k);
+            }
+            r.sort_unstable();
+            r.dedup();
+            rows.extend(&r);
+            col_ptr.push(rows.len());
+        }
+        for j in 0..n {
+            let mut r = vec![j];
+            for k in j.saturating_sub(1)..=(j + 1).min(n - 1) {
+                r.push(n + k);
+            }
+            r.sort_unstable();
+            r.dedup();
+            rows.extend(&r);
+            col_ptr.push(rows.len());
+        }
+        Some((col_ptr, rows))
+    }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        _yp: &[f64],
+        cj: f64,
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let n = self.n;
+        let (col_ptr, rows) = self.jacobian_pattern().expect("pattern");
+        for j in 0..2 * n {
+            let is_w = j >= n;
+            let k = if is_w { j - n } else { j };
+            let g = if is_w { D } else { C };
+            for p in col_ptr[j]..col_ptr[j + 1] {
+                let r = rows[p];
+                values[p] = if r < n {
+                    // Kinematic row r: phi_r' - w_r.
+                    match (is_w, r == k) {
+                        (false, true) => cj,
+                        (true, true) => -1.0,
+                        _ => 0.0,
+                    }
+                } else {
+                    // Dynamic row i: J w_i' - tau_{i+1} + tau_i with
+                    // tau_i = g (x_i - x_{i-1}) and tau_{i+1} = g (x_{i+1} - x_i).
+                    let i = r - n;
+                    let mut v = if is_w && i == k { J * cj } else { 0.0 };
+                    if i == k {
+                        v += g;
+                        if i + 1 < n {
+                            v += g;
+                        }
+                    } else if k + 1 == i || i + 1 == k {
+                        v -= g;
+                    }
+                    v
+                };
+            }
+        }
+        Ok(())
+    }
+}
+
+fn baseline(n: usize, linear_solver: LinearSolver) -> (f64, u64, f64) {
+    let (t, stats, last) = baseline_stats(n, linear_solver);
+    if std::env::var("BENCH_STATS").is_ok() {
+        eprintln!("baseline {stats:?}");
+    }
+    (t, stats.steps, last)
+}
+
+fn baseline_stats(n: usize, linear_solver: LinearSolver) -> (f64, ida::IdaStats, f64) {
+    let mut f = Baseline { n };
+    let mut y0 = vec![0.0; 2 * n];
+    y0[n - 1] = 1.0;
+    let mut yp0 = vec![0.0; 2 * n];
+    // Consistent derivatives: w' = (tau_{k+1} - tau_k) / J.
+    for k in 1..=n {
+        yp0[n + k - 1] = (f.tau(&y0, k + 1) - f.tau(&y0, k)) / J;
+    }
+    let settings = IdaSettings {
+        rtol: RTOL,
+        atol: ATOL,
+        linear_solver,
+        id: vec![1.0; 2 * n],
+        ..IdaSettings::default()
+    };
+    // Stores the trajectory at every step, as a solution object does.
+    let (mut ts, mut ys, mut yps) = (Vec::new(), Vec::new(), Vec::new());
+    let t0 = Instant::now();
+    let stats = ida::integrate(
+        &mut f,
+        0.0,
+        &y0,
+        &yp0,
+        &settings,
+        &OutputMode::EveryStep { t_end: T_END },
+        &mut |t, y, yp| {
+            ts.push(t);
+            ys.extend_from_slice(y);
+            yps.extend_from_slice(yp);
+            true
+        },
+    )
+    .expect("baseline solve");
+    let elapsed = t0.elapsed().as_secs_f64();
+    let last = ys[ys.len() - 2 * n + n - 1];
+    (elapsed, stats, last)
+}
+
+fn main() -> Result<(), multibody::Error> {
+    let sizes: Vec<usize> = {
+        let args: Vec<usize> = std::env::args()
+            .skip(1)
+            .filter_map(|a| a.parse().ok())
+            .collect();
+        if args.is_empty() {
+            vec![10, 100, 1000, 10000]
+        } else {
+            args
+        }
+    };
+    for n in sizes {
+        let model = chain(n);
+        let ssys = structural_simplify(&model)?;
+        let times = ssys.statistics().times;
+        let t0 = Instant::now();
+        let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
+        let init_s = t0.elapsed().as_secs_f64();
+        let choice = if ssys.unknowns().len() <= 24 {
+            LinearSolverChoice::Dense
+        } else {
+            LinearSolverChoice::Sparse
+        };
+        let opts = SolverOptions {
+            rtol: RTOL,
+            atol: ATOL,
+            linear_solver: choice,
+            ..SolverOptions::default()
+        };
+        let t1 = Instant::now();
+        let sol = prob.solve(&opts)?;
+        let solve_s = t1.elapsed().as_secs_f64();
+        let ours_last = sol.final_value(&format!("inertia{n}.phi"))?;
+        if std::env::var("BENCH_STATS").is_ok() {
+            eprintln!("ours {:?}", sol.statistics());
+        }
+        let linear = if choice == LinearSolverChoice::Dense {
+            LinearSolver::Dense
+        } else {
+            LinearSolver::SparseLu
+        };
+        if std::env::var("BENCH_ONLY_OURS").is_ok() {
+            continue;
+        }
+        let (baseline_solve_s, baseline_steps, base_last) = baseline(n, linear);
+        assert!(
+            (ours_last - base_last).abs() < 1e-3,
+            "the two solutions disagree: {ours_last} vs {base_last}"
+        );
+        let compile_s = times.flatten_s + times.simplify_s + times.codegen_s;
+        println!(
+            "{{\"n\": {n}, \"flatten_s\": {:.6}, \"simplify_s\": {:.6}, \"codegen_s\": {:.6}, \"init_s\": {init_s:.6}, \"solve_s\": {solve_s:.6}, \"compile_s\": {compile_s:.6}, \"steps\": {}, \"baseline_solve_s\": {baseline_solve_s:.6}, \"baseline_steps\": {baseline_steps}, \"solve_ratio\": {:.3}, \"states\": {}}}",
+            times.flatten_s,
+            times.simplify_s,
+            times.codegen_s,
+            sol.statistics().steps,
+            solve_s / baseline_solve_s,
+            ssys.states().len(),
+        );
+    }
+    Ok(())
+}
