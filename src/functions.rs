@@ -23,6 +23,13 @@ impl Derivative for Expr {
     }
 }
 
+impl Derivative for multibody_core::expr::Vec3 {
+    type Output = multibody_core::expr::Vec3;
+    fn der(self) -> multibody_core::expr::Vec3 {
+        multibody_core::expr::Vec3::der(self)
+    }
+}
+
 impl Derivative for Signal {
     type Output = Expr;
     fn der(self) -> Expr {

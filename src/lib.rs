@@ -36,9 +36,14 @@ extern crate self as multibody;
 
 pub mod blocks;
 pub mod electrical;
+pub mod frames;
 pub mod functions;
+pub mod interfaces;
+pub mod joints;
+pub mod parts;
 pub mod rotational;
 pub mod translational;
+pub mod world;
 
 pub use multibody_core::codegen;
 pub use multibody_core::expr::Expr;
@@ -60,6 +65,7 @@ pub use multibody_macros::{component, connector, system};
 /// What a model file needs: the macros, the builder types, the solver and plots, and
 /// the functions used in equations.
 pub mod prelude {
+    pub use crate::frames::{Mat3, Orientation, Vec3};
     pub use crate::functions::*;
     pub use crate::{
         Component, ConnectorHandle, DaeProblem, Expr, PlotOptions, Real, Signal, SimplifiedSystem,

@@ -131,6 +131,9 @@ pub enum ConnectorRole {
     Input,
     /// A causal output signal.
     Output,
+    /// An overdetermined group (a frame's orientation): related through the virtual
+    /// connection graph.
+    Overdetermined,
 }
 
 /// A variable of a connector.

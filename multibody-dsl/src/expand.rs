@@ -125,6 +125,7 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
     let mut equations = TokenStream::new();
     let mut deref = TokenStream::new();
     let mut n_bases = 0usize;
+    let mut translator = equations::Translator::default();
 
     for item in &def.items {
         match item {
@@ -251,10 +252,11 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 n_bases += 1;
             }
             Item::Equations { initial, body, .. } => {
-                equations.extend(equations::translate(body, *initial)?);
+                equations.extend(translator.translate(body, *initial)?);
             }
         }
     }
+    equations.extend(translator.finish());
     build.extend(structural);
     build.extend(parameters);
     build.extend(bases);
@@ -320,6 +322,7 @@ fn role_tokens(role: ConnectorRole) -> TokenStream {
         ConnectorRole::Flow => quote!(#p::VarKind::Flow),
         ConnectorRole::Input => quote!(#p::VarKind::Input),
         ConnectorRole::Output => quote!(#p::VarKind::Output),
+        ConnectorRole::Overdetermined => quote!(#p::VarKind::Overdetermined),
     }
 }
 
@@ -372,9 +375,15 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
         let docs = docs_escaped(docs);
         fields.extend(quote!(#docs pub #n: #ty,));
         init.extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
-        build.extend(quote!(
-            __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd));
-        ));
+        if v.role == ConnectorRole::Overdetermined {
+            build.extend(quote!(
+                __s.declare_overdetermined::<#ty>(#p::Variable::new(#s).description(#vd));
+            ));
+        } else {
+            build.extend(quote!(
+                __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd));
+            ));
+        }
     }
     let handle_doc = format!("Handle of a [`{name}`] connector instance: its variables by name.");
     let attrs = docs_escaped(attrs);

@@ -219,10 +219,12 @@ fn role(kw: &Ident) -> syn::Result<ConnectorRole> {
         "flow" => Ok(ConnectorRole::Flow),
         "input" => Ok(ConnectorRole::Input),
         "output" => Ok(ConnectorRole::Output),
+        "overdetermined" => Ok(ConnectorRole::Overdetermined),
         other => Err(syn::Error::new(
             kw.span(),
             format!(
-                "unknown connector variable kind `{other}`: expected potential, flow, input or output"
+                "unknown connector variable kind `{other}`: expected potential, flow, input, \
+                 output or overdetermined"
             ),
         )),
     }

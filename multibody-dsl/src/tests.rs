@@ -205,3 +205,68 @@ fn unit_brackets_are_escaped_but_links_are_kept() {
     );
     assert_eq!(escape_units("no brackets"), "no brackets");
 }
+
+#[test]
+fn graph_statements_become_branch_and_root_declarations() {
+    let d = parse_component(quote! {
+        pub struct Joint {
+            connector frame_a: Frame;
+            connector frame_b: Frame;
+            variable phi: Real;
+            equation {
+                branch(frame_a.R, frame_b.R);
+                if rooted(frame_a.R) {
+                    frame_b.R = f(frame_a.R, phi);
+                } else {
+                    frame_a.R = g(frame_b.R, phi);
+                }
+            }
+        }
+    })
+    .unwrap();
+    let out = crate::expand::component(&d).unwrap().to_string();
+    assert!(out.contains("__s . capture"), "{out}");
+    assert!(
+        out.contains("__s . branch (& frame_a . R , & frame_b . R , __a_rooted , __b_rooted)"),
+        "{out}"
+    );
+    // `rooted` of the second orientation swaps the two sets.
+    let d = parse_component(quote! {
+        pub struct J2 {
+            equation {
+                branch(a.R, b.R);
+                if rooted(b.R) { x = 1.0; } else { x = 2.0; }
+            }
+        }
+    })
+    .unwrap();
+    let out = crate::expand::component(&d).unwrap().to_string();
+    let first = out.find("x , 2.0").unwrap();
+    let second = out.find("x , 1.0").unwrap();
+    assert!(first < second, "{out}");
+    // A branch with no conditional is registered with empty sets; roots immediately.
+    let d = parse_component(quote! {
+        pub struct Rigid {
+            equation {
+                root(frame_b.R);
+                branch(a.R, b.R);
+                potential_root(a.R, 2);
+            }
+        }
+    })
+    .unwrap();
+    let out = crate::expand::component(&d).unwrap().to_string();
+    assert!(out.contains("__s . root (& frame_b . R)"), "{out}");
+    assert!(
+        out.contains("__s . branch (& a . R , & b . R , :: std :: vec :: Vec :: new ()"),
+        "{out}"
+    );
+    assert!(out.contains("__s . potential_root (& a . R , 2 ,"), "{out}");
+    // rooted without a branch is an error.
+    let d = parse_component(quote! {
+        pub struct Bad { equation { if rooted(a.R) { x = 1.0; } } }
+    })
+    .unwrap();
+    let e = crate::expand::component(&d).err().unwrap().to_string();
+    assert!(e.contains("needs a preceding `branch(..)`"), "{e}");
+}

@@ -17,12 +17,14 @@ mod eval;
 pub(crate) mod global;
 mod solve;
 mod subst;
+mod vector;
 
 pub use arena::Arena;
 pub use display::NameResolver;
 pub use global::{Expr, symbol_name};
 pub use solve::LinearSolve;
 pub use subst::ImportMemo;
+pub use vector::{Mat3, Vec3};
 
 /// Index of a node in an [`Arena`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

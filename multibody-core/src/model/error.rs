@@ -43,6 +43,13 @@ pub enum ModelError {
         /// Its class.
         class_b: String,
     },
+    /// The virtual connection graph of overdetermined connectors (orientations) is
+    /// wrong: two roots in one mechanism, a part with no root, a loop of rigid branches.
+    #[error("{message}")]
+    Graph {
+        /// What is wrong, naming the frames and components.
+        message: String,
+    },
     /// A parameter has no value and is not computed at initialization.
     #[error("parameter `{0}` has no value")]
     ParameterWithoutValue(String),

@@ -36,6 +36,16 @@ pub enum Origin {
         /// The flow variable.
         flow: String,
     },
+    /// Decided by the virtual connection graph (orientation propagation along a
+    /// branch or connection, a loop closure residue, a root's equations).
+    Graph {
+        /// The component (empty for connections).
+        path: String,
+        /// What it is, in words.
+        text: String,
+        /// The equation.
+        equation: Equation,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -72,6 +82,10 @@ pub struct FlatSystem {
     pub starts: Vec<Option<Id>>,
     /// Parameter bindings in the local arena.
     pub parameter_values: Vec<Option<Id>>,
+    /// `(variable, derivative)`: variables whose time derivative is an expression.
+    pub derivative_rules: Vec<(u32, Id)>,
+    /// Connections that close loops of overdetermined connectors (cut), by node.
+    pub cuts: Vec<(String, String)>,
 }
 
 /// Names of a flat system's leaves.
@@ -120,6 +134,9 @@ impl FlatSystem {
             Origin::FlowSum { flows } => format!("connection: {} = 0", flows.join(" + ")),
             Origin::UnconnectedFlow { flow } => format!("unconnected flow: {flow} = 0"),
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
+            Origin::Graph { text, equation, .. } => {
+                format!("{text}: {} = {}", equation.lhs, equation.rhs)
+            }
         }
     }
 }
@@ -172,6 +189,8 @@ fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
 /// flows zero), and checks names and connector classes. The balance check is separate
 /// ([`super::balance::check_balance`]).
 pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
+    // The graph builds expressions (residues): before the global arena is locked.
+    let graph = super::connection_graph::resolve(sys)?;
     let g = crate::expr::global::global();
     let mut f = Flattener {
         g: &g,
@@ -184,6 +203,8 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             initial_equations: Vec::new(),
             starts: Vec::new(),
             parameter_values: Vec::new(),
+            derivative_rules: Vec::new(),
+            cuts: graph.cuts.clone(),
         },
         var_of_sym: vec![u32::MAX; g.n_symbols()],
         param_of_sym: vec![u32::MAX; g.n_symbols()],
@@ -231,6 +252,34 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                     origin,
                 });
             }
+        }
+        for (var, der) in &s.derivative_rules {
+            let origin = Origin::Component {
+                path: s.path.clone(),
+                equation: Equation {
+                    lhs: *var,
+                    rhs: *der,
+                },
+            };
+            if let (Some(v), Some(d)) = (f.translate(*var, &origin), f.translate(*der, &origin))
+                && let Node::Var(i) = f.flat.arena.node(v)
+            {
+                let i = *i;
+                f.flat.derivative_rules.push((i, d));
+            }
+        }
+    }
+    for ge in graph.equations {
+        let origin = Origin::Graph {
+            path: ge.path,
+            text: ge.text,
+            equation: ge.equation,
+        };
+        if let Some(r) = f.translate_equation(&ge.equation, &origin) {
+            f.flat.equations.push(FlatEquation {
+                residual: r,
+                origin,
+            });
         }
     }
     let vars = f.flat.variables.clone();
@@ -432,7 +481,7 @@ impl Flattener<'_> {
                     .zip(cb.vars.iter().copied())
                     .collect();
                 for ((va, ka), (vb, _)) in pairs {
-                    if ka == VarKind::Flow {
+                    if ka == VarKind::Flow || ka == VarKind::Overdetermined {
                         continue;
                     }
                     let (ra, rb) = (

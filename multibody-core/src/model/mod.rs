@@ -2,8 +2,10 @@
 //! balance check.
 
 mod balance;
+mod connection_graph;
 mod error;
 mod flatten;
+mod graph;
 mod system;
 mod typed;
 mod variable;
@@ -11,6 +13,7 @@ mod variable;
 pub use balance::check_balance;
 pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
+pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use system::{Component, Connection, Equation, System, join_path};
 pub use typed::{
     Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, TypedComponent,

@@ -70,6 +70,13 @@ pub struct System {
     pub subsystems: Vec<System>,
     /// Connections among connectors of this system and its sub-components.
     pub connections: Vec<Connection>,
+    /// Variables whose time derivative is an expression rather than an unknown
+    /// (`der(R.T) = -skew(R.w) R.T`): `(variable, derivative)`.
+    pub derivative_rules: Vec<(Expr, Expr)>,
+    /// Overdetermined variable groups declared here (an orientation in a frame).
+    pub overdetermined: Vec<super::graph::OverdeterminedGroup>,
+    /// Roots, potential roots and branches of the virtual connection graph.
+    pub graph: Vec<super::graph::GraphDecl>,
 }
 
 /// Joins a path and a local name with a dot (an empty side is left out).
@@ -104,6 +111,9 @@ impl System {
             initial_equations: Vec::new(),
             subsystems: Vec::new(),
             connections: Vec::new(),
+            derivative_rules: Vec::new(),
+            overdetermined: Vec::new(),
+            graph: Vec::new(),
         }
     }
 

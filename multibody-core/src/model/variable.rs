@@ -15,6 +15,9 @@ pub enum VarKind {
     Input,
     /// A causal output signal of a connector.
     Output,
+    /// A variable of an overdetermined group (an orientation in a frame): connections
+    /// relate it through the virtual connection graph, not by plain equality.
+    Overdetermined,
 }
 
 /// Modelica's `StateSelect`, mapped onto [`Variable::state_priority`].

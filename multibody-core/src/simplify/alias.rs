@@ -237,6 +237,35 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
             eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
         }
     }
+    // Derivative rules (der(x) is an expression, as for an orientation matrix): moved
+    // onto the representative of an eliminated variable, dropped for constants.
+    let mut dmap: HashMap<Id, Id> = HashMap::default();
+    let mut has_rule = vec![false; nv];
+    let rules = flat.derivative_rules.clone();
+    for (x, expr) in rules {
+        let e = flat.arena.substitute(expr, &map);
+        let (target, sign) = match replaced[x as usize] {
+            None => (x, 1.0),
+            Some(r) => match flat.arena.node(r).clone() {
+                Node::Var(rep) => (rep, 1.0),
+                Node::Sum(ts, c) if ts.len() == 1 && f64::from_bits(c) == 0.0 => {
+                    match flat.arena.node(ts[0].1) {
+                        Node::Var(rep) => (*rep, 1.0 / f64::from_bits(ts[0].0)),
+                        _ => continue,
+                    }
+                }
+                _ => continue,
+            },
+        };
+        if has_rule[target as usize] {
+            continue;
+        }
+        has_rule[target as usize] = true;
+        let xl = flat.arena.var(target);
+        let dx = flat.arena.der(xl);
+        let value = flat.arena.scale(sign, e);
+        dmap.insert(dx, value);
+    }
     // Derivative aliases: der(x) = v.
     let mut derivative: Vec<Option<u32>> = vec![None; nv];
     let mut is_derivative = vec![false; nv];
@@ -248,7 +277,11 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         let Some((x, v)) = derivative_pattern(&flat.arena, r) else {
             continue;
         };
-        if derivative[x as usize].is_some() || is_derivative[v as usize] || x == v {
+        if derivative[x as usize].is_some()
+            || is_derivative[v as usize]
+            || x == v
+            || has_rule[x as usize]
+        {
             continue;
         }
         // No cycle: following derivatives from v must not reach x.
@@ -268,7 +301,6 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         is_derivative[v as usize] = true;
         removed[e] = true;
     }
-    let mut dmap: HashMap<Id, Id> = HashMap::default();
     for (x, d) in derivative.iter().enumerate() {
         if let Some(v) = *d {
             let xl = flat.arena.var(x as u32);

@@ -7,7 +7,7 @@ use crate::hash::HashMap;
 use crate::expr::{Arena, Id, Node};
 use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{SelectionError, StateRank, dummy_derivatives};
-use crate::structure::pantelides::{StructurallySingular, pantelides};
+use crate::structure::pantelides::{StructurallySingular, pantelides_with_implicit};
 
 use super::error::SimplifyError;
 
@@ -189,10 +189,13 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         let inc = incidence(&mut table, eq.residual);
         graph.add_equation(inc);
     }
+    let (mut var_diff, mut implicit) = derivative_links(&mut table, derivative_map);
+    // (Derivative rules may mention variables no equation does: they got slots too.)
     let n_slots = table.slots.len();
+    var_diff.resize(n_slots, None);
+    implicit.resize(n_slots, Vec::new());
     graph.n_vars = n_slots;
-    let var_diff = derivative_links(&mut table, derivative_map);
-    let red = match pantelides(&graph, &var_diff) {
+    let red = match pantelides_with_implicit(&graph, &var_diff, &implicit) {
         Ok(r) => r,
         Err(StructurallySingular {
             equations,
@@ -352,13 +355,22 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
 }
 
 /// `var_diff` from the leaves: a slot's derivative is the slot of its canonical time
-/// derivative, when that exists.
-fn derivative_links(table: &mut SlotTable<'_>, dmap: &HashMap<Id, Id>) -> Vec<Option<usize>> {
+/// derivative, when that exists. A slot whose derivative is an expression (a derivative
+/// rule) gets the slots of that expression as its implicit derivative instead.
+fn derivative_links(
+    table: &mut SlotTable<'_>,
+    dmap: &HashMap<Id, Id>,
+) -> (Vec<Option<usize>>, Vec<Vec<usize>>) {
     let n = table.slots.len();
     let mut var_diff = vec![None; n];
-    for (s, vd) in var_diff.iter_mut().enumerate() {
+    let mut implicit = vec![Vec::new(); n];
+    for s in 0..n {
         let d = leaf_derivative(table.arena, table.slots[s].leaf, dmap);
-        *vd = table.slot_of.get(&d).copied();
+        if let Some(&ds) = table.slot_of.get(&d) {
+            var_diff[s] = Some(ds);
+        } else if !matches!(table.arena.node(d), Node::Der(_)) {
+            implicit[s] = incidence(table, d);
+        }
     }
-    var_diff
+    (var_diff, implicit)
 }

@@ -192,6 +192,21 @@ pub fn pantelides(
     graph: &BipartiteGraph,
     var_diff: &[Option<usize>],
 ) -> Result<IndexReduction, StructurallySingular> {
+    pantelides_with_implicit(graph, var_diff, &[])
+}
+
+/// [`pantelides`] for systems where some slots have an *implicit* derivative: an
+/// expression of other slots rather than a slot of its own (an orientation matrix, whose
+/// derivative is `-skew(w) T`). `implicit[v]` lists the slots that derivative contains
+/// (empty for ordinary slots; the slice may be shorter than the number of slots). Such
+/// a slot never gets a derivative slot: it stays an algebraic unknown, and a
+/// differentiated equation contains the slots of its implicit derivative instead.
+pub fn pantelides_with_implicit(
+    graph: &BipartiteGraph,
+    var_diff: &[Option<usize>],
+    implicit: &[Vec<usize>],
+) -> Result<IndexReduction, StructurallySingular> {
+    let is_implicit = |v: usize| implicit.get(v).is_some_and(|d| !d.is_empty());
     assert_eq!(
         var_diff.len(),
         graph.n_vars,
@@ -256,7 +271,7 @@ pub fn pantelides(
                 });
             }
             for &v in &colored_vars {
-                if var_diff[v].is_none() {
+                if var_diff[v].is_none() && !is_implicit(v) {
                     let w = var_diff.len();
                     var_diff.push(None);
                     var_eq.push(None);
@@ -270,6 +285,8 @@ pub fn pantelides(
                         vars.push(v);
                         if let Some(d) = var_diff[v] {
                             vars.push(d);
+                        } else if is_implicit(v) {
+                            vars.extend(implicit[v].iter().copied());
                         }
                     }
                     vars.sort_unstable();
@@ -284,6 +301,16 @@ pub fn pantelides(
             // The derivatives of the colored slots inherit the derivatives of their
             // equations; the old pairs are dropped (lower-order slots leave the matching).
             for &v in &colored_vars {
+                if is_implicit(v) {
+                    // No derivative slot: the slot stays in the highest-order set and
+                    // looks for a new equation by later augmenting paths.
+                    if let Some(e) = var_eq[v].take()
+                        && eq_var[e] == Some(v)
+                    {
+                        eq_var[e] = None;
+                    }
+                    continue;
+                }
                 if let Some(e) = var_eq[v] {
                     let dv = var_diff[v].expect("created above");
                     let de = eq_diff[e].expect("colored equation was differentiated");

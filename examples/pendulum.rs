@@ -1,0 +1,42 @@
+//! MSL's `Examples.Elementary.Pendulum`: a body swinging on a revolute joint with a
+//! rotational damper between the joint's support and axis.
+//!
+//! `cargo run --release --example pendulum` writes `pendulum.png`.
+
+use multibody::joints::Revolute;
+use multibody::parts::Body;
+use multibody::prelude::*;
+use multibody::rotational::Damper;
+use multibody::world::World;
+
+/// The model (MSL defaults: n = z, d = 0.1, m = 1, r_CM = {0.5, 0, 0}).
+pub fn pendulum() -> System {
+    system! {
+        name: "pendulum";
+        world = World::default();
+        rev = Revolute { n: [0.0, 0.0, 1.0], axisflange: true };
+        damper = Damper { d: 0.1 };
+        body = Body { m: 1.0, r_CM: [0.5, 0.0, 0.0] };
+        connect(world.frame_b, rev.frame_a);
+        connect(rev.frame_b, body.frame_a);
+        connect(damper.flange_b, rev.axis);
+        connect(rev.support, damper.flange_a);
+    }
+}
+
+fn main() -> Result<(), multibody::Error> {
+    let ssys = structural_simplify(&pendulum())?;
+    println!("{}", ssys.statistics());
+    println!("unknowns: {:?}", ssys.unknowns());
+    let sol = DaeProblem::new(&ssys, &[("rev.phi", 0.0), ("rev.w", 0.0)], (0.0, 5.0))?
+        .solve(&SolverOptions::default())?;
+    println!("rev.phi(5) = {}", sol.final_value("rev.phi")?);
+    plot_figure(
+        &sol,
+        &[&["rev.phi"], &["rev.w"]],
+        "pendulum.png",
+        &PlotOptions::default(),
+    )?;
+    println!("wrote pendulum.png");
+    Ok(())
+}

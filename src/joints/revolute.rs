@@ -1,0 +1,80 @@
+//! The revolute joint.
+
+use super::{JOINT_STATE_PRIORITY, unit_axis};
+use crate::frames::{Vec3, absolute_rotation, equality_constraint, planar_rotation, resolve1};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+use crate::rotational;
+
+component! {
+    /// A joint rotating `frame_b` relative to `frame_a` about the axis `n` by the angle
+    /// `phi` (MSL `Joints.Revolute`). The `axis` flange carries the driving torque `tau`
+    /// (0 when nothing is connected to it) and the `support` flange is fixed at angle 0,
+    /// so 1-D components (dampers, motors) act on the joint through them. With `iscut`
+    /// the joint closes a kinematic loop with three orientation residues instead of
+    /// relating the orientations of its frames.
+    #[type_name = "MultiBody.Joints.Revolute"]
+    pub struct Revolute {
+        /// Rotation axis, resolved in `frame_a` (and `frame_b`).
+        structural n: [f64; 3] = [0.0, 0.0, 1.0];
+        /// Start value of the angle \[rad\].
+        structural phi0: f64 = 0.0;
+        /// Start value of the angular velocity \[rad/s\].
+        structural w0: f64 = 0.0;
+        /// Priority of `phi` and `w` as states.
+        structural state_priority: f64 = JOINT_STATE_PRIORITY;
+        /// The joint is a cut of a kinematic loop.
+        structural iscut: bool = false;
+        /// Whether the 1-D flanges are meant to be connected (they always exist).
+        structural axisflange: bool = false;
+        /// Radius when rendered \[m\].
+        structural radius: f64 = 0.05;
+        /// Length when rendered \[m\].
+        structural length: f64 = 0.1;
+        /// First frame.
+        connector frame_a: Frame;
+        /// Second frame.
+        connector frame_b: Frame;
+        /// Driving flange: its angle is `phi`, its torque `tau`.
+        connector axis: rotational::Flange;
+        /// Housing flange, fixed at angle 0.
+        connector support: rotational::Flange;
+        /// Rotation angle from `frame_a` to `frame_b` about `n` \[rad\].
+        variable phi(start = phi0, state_priority = state_priority): Real;
+        /// Angular velocity `der(phi)` \[rad/s\].
+        variable w(start = w0, state_priority = state_priority): Real;
+        /// Angular acceleration `der(w)` \[rad/s2\].
+        variable a: Real;
+        /// Driving torque in the direction of the axis \[N.m\].
+        variable tau: Real;
+        equation {
+            let e = unit_axis(n, "Revolute");
+            w = der(phi);
+            a = der(w);
+            frame_b.r_0 = frame_a.r_0;
+            if iscut {
+                let r_rel = planar_rotation(e, phi, w);
+                Vec3::zero() = equality_constraint(&absolute_rotation(&frame_a.R, &r_rel), &frame_b.R);
+                frame_a.f = -resolve1(&r_rel, frame_b.f);
+                frame_a.t = -resolve1(&r_rel, frame_b.t);
+            } else {
+                branch(frame_a.R, frame_b.R);
+                if rooted(frame_a.R) {
+                    let r_rel = planar_rotation(e, phi, w);
+                    frame_b.R = absolute_rotation(&frame_a.R, &r_rel);
+                    frame_a.f = -resolve1(&r_rel, frame_b.f);
+                    frame_a.t = -resolve1(&r_rel, frame_b.t);
+                } else {
+                    let r_rel = planar_rotation(-e, phi, w);
+                    frame_a.R = absolute_rotation(&frame_b.R, &r_rel);
+                    frame_b.f = -resolve1(&r_rel, frame_a.f);
+                    frame_b.t = -resolve1(&r_rel, frame_a.t);
+                }
+            }
+            tau = -e.dot(frame_b.t);
+            axis.phi = phi;
+            axis.tau = tau;
+            support.phi = 0.0;
+        }
+    }
+}

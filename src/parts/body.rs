@@ -1,0 +1,117 @@
+//! Rigid bodies with mass and inertia (MSL `Parts.Body`).
+
+use crate::frames::{Mat3, Vec3, axes_rotations, quaternion_to_t, resolve1, resolve2};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+use crate::world::gravity_acceleration;
+
+/// How a free body (the root of its mechanism) describes its orientation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum OrientationStates {
+    /// Three angles about the axes of a sequence and their derivatives: 6 states,
+    /// singular where the middle rotation is +-90 degrees (gimbal lock).
+    #[default]
+    Cardan,
+    /// A non-unit quaternion (4 states, no constraint: its norm is driven back to 1) and
+    /// the angular velocity: 7 states, never singular (as Multibody.jl).
+    Quaternion,
+}
+
+component! {
+    /// A rigid body with mass and inertia (MSL `Parts.Body`): Newton and Euler equations
+    /// at `frame_a`. When nothing else determines its orientation (a free body), it is
+    /// the root of its mechanism and carries orientation states (Cardan angles or a
+    /// quaternion).
+    #[type_name = "MultiBody.Parts.Body"]
+    pub struct Body {
+        /// Mass \[kg\].
+        parameter m: f64 = 1.0;
+        /// Vector from `frame_a` to the centre of mass, resolved in `frame_a` \[m\].
+        parameter r_CM: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Inertia about the centre of mass, element (1,1), axes parallel to `frame_a` \[kg.m2\].
+        parameter I_11: f64 = 0.001;
+        /// Element (2,2) of the inertia \[kg.m2\].
+        parameter I_22: f64 = 0.001;
+        /// Element (3,3) of the inertia \[kg.m2\].
+        parameter I_33: f64 = 0.001;
+        /// Element (2,1) of the inertia \[kg.m2\].
+        parameter I_21: f64 = 0.0;
+        /// Element (3,1) of the inertia \[kg.m2\].
+        parameter I_31: f64 = 0.0;
+        /// Element (3,2) of the inertia \[kg.m2\].
+        parameter I_32: f64 = 0.0;
+        /// Orientation states when the body is a root.
+        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Axis sequence of the Cardan angles.
+        structural sequence_angle_states: [usize; 3] = [1, 2, 3];
+        /// Priority of `r_0` and `v_0` as states (MSL: avoid).
+        structural position_state_priority: f64 = StateSelect::Avoid.priority();
+        /// Radius of the sphere drawn at the centre of mass \[m\] (0 hides it).
+        structural radius: f64 = 0.05;
+        /// The frame the body is fixed to.
+        connector frame_a: Frame;
+        /// Position of `frame_a`, resolved in world \[m\].
+        variable r_0(state_priority = position_state_priority): Vec3;
+        /// Velocity of `frame_a`, resolved in world \[m/s\].
+        variable v_0(state_priority = position_state_priority): Vec3;
+        /// Acceleration of `frame_a`, resolved in world \[m/s2\].
+        variable a_0: Vec3;
+        /// Angular velocity, resolved in `frame_a` \[rad/s\].
+        variable w_a(state_priority = StateSelect::Avoid.priority()): Vec3;
+        /// Angular acceleration, resolved in `frame_a` \[rad/s2\].
+        variable z_a: Vec3;
+        /// Gravity acceleration at the centre of mass, resolved in world \[m/s2\].
+        variable g_0: Vec3;
+        /// Orientation angles when the body is a root (0 otherwise) \[rad\].
+        variable phi(state_priority = 1000.0): Vec3;
+        /// Derivatives of the angles \[rad/s\].
+        variable phi_d(state_priority = 1000.0): Vec3;
+        /// Second derivatives of the angles \[rad/s2\].
+        variable phi_dd: Vec3;
+        /// Vector part of the quaternion when the body is a root (0 otherwise).
+        variable q_v(state_priority = 1000.0): Vec3;
+        /// Scalar part of the quaternion when the body is a root (1 otherwise).
+        variable q_4(start = 1.0, state_priority = 1000.0): Real;
+        equation {
+            let inertia = Mat3([[I_11, I_21, I_31], [I_21, I_22, I_32], [I_31, I_32, I_33]]);
+            r_0 = frame_a.r_0;
+            potential_root(frame_a.R);
+            if is_root(frame_a.R) {
+                match orientation_states {
+                    OrientationStates::Cardan => {
+                        phi_d = der(phi);
+                        phi_dd = der(phi_d);
+                        frame_a.R = axes_rotations(sequence_angle_states, phi.0, phi_d.0);
+                        q_v = Vec3::zero();
+                        q_4 = 1.0;
+                    }
+                    OrientationStates::Quaternion => {
+                        phi = Vec3::zero();
+                        phi_d = Vec3::zero();
+                        phi_dd = Vec3::zero();
+                        let n2 = q_v.dot(q_v) + q_4 * q_4;
+                        let n = n2.sqrt();
+                        frame_a.R.T = quaternion_to_t([q_v[0] / n, q_v[1] / n, q_v[2] / n, q_4 / n]);
+                        // Kinematics of a non-unit quaternion, with a term that drives its
+                        // norm back to 1 (it is orthogonal to the rotation part).
+                        der(q_v) = (q_v.cross(w_a) + q_4 * w_a).scale(0.5) + q_v.scale(1.0 - n2);
+                        der(q_4) = -0.5 * q_v.dot(w_a) + q_4 * (1.0 - n2);
+                    }
+                }
+            } else {
+                phi = Vec3::zero();
+                phi_d = Vec3::zero();
+                phi_dd = Vec3::zero();
+                q_v = Vec3::zero();
+                q_4 = 1.0;
+            }
+            g_0 = gravity_acceleration(frame_a.r_0 + resolve1(&frame_a.R, r_CM));
+            v_0 = der(r_0);
+            a_0 = der(v_0);
+            w_a = frame_a.R.w;
+            z_a = der(w_a);
+            frame_a.f = (resolve2(&frame_a.R, a_0 - g_0) + z_a.cross(r_CM) + w_a.cross(w_a.cross(r_CM))).scale(m);
+            frame_a.t = inertia * z_a + w_a.cross(inertia * w_a) + r_CM.cross(frame_a.f);
+        }
+    }
+}
