@@ -36,6 +36,7 @@ extern crate self as multibody;
 
 pub mod blocks;
 pub mod electrical;
+pub mod forces;
 pub mod frames;
 pub mod functions;
 pub mod interfaces;

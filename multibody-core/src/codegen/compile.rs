@@ -20,6 +20,7 @@ pub(crate) type FastMap<K, V> = crate::hash::HashMap<K, V>;
 /// so shared subexpressions cost nothing extra.
 pub struct TapeBuilder<'a> {
     arena: &'a Arena,
+    names: Option<&'a dyn Fn(Id) -> String>,
     n_inputs: usize,
     ops: Vec<Op>,
     consts: Vec<f64>,
@@ -37,6 +38,7 @@ impl<'a> TapeBuilder<'a> {
     pub fn new(arena: &'a Arena, n_inputs: usize) -> Self {
         TapeBuilder {
             arena,
+            names: None,
             n_inputs,
             ops: Vec::new(),
             consts: Vec::new(),
@@ -224,7 +226,16 @@ impl<'a> TapeBuilder<'a> {
 
     /// The debug form of a node, for messages.
     fn describe(&self, id: Id) -> String {
-        format!("{:?} = {:?}", id, self.arena.node(id))
+        match self.names {
+            Some(f) => f(id),
+            None => format!("{:?} = {:?}", id, self.arena.node(id)),
+        }
+    }
+
+    /// Names leaves in messages (linear systems that fail name their unknowns).
+    pub fn with_names(mut self, names: &'a dyn Fn(Id) -> String) -> Self {
+        self.names = Some(names);
+        self
     }
 
     fn check_leaf(&self, id: Id) -> Result<(), CodegenError> {

@@ -83,16 +83,18 @@ pub(crate) struct DaeSpec<'a> {
     /// Observed outputs.
     pub observed: &'a [(String, Id)],
     pub n_params: usize,
+    /// Names of leaves, for messages.
+    pub names: &'a dyn Fn(Id) -> String,
 }
 
 /// Binds time, parameters, unknowns and their derivatives, then adds the steps.
 fn builder<'a>(
     arena: &'a Arena,
     leaves: &Leaves,
-    spec: &DaeSpec<'_>,
+    spec: &DaeSpec<'a>,
     layout: InputLayout,
 ) -> Result<TapeBuilder<'a>, CodegenError> {
-    let mut b = TapeBuilder::new(arena, layout.len());
+    let mut b = TapeBuilder::new(arena, layout.len()).with_names(spec.names);
     if let Some(t) = leaves.time {
         b.input(t, InputLayout::TIME);
     }

@@ -62,3 +62,51 @@ pub fn check_balance(flat: &FlatSystem) -> Result<(), ModelError> {
         overdetermined,
     })
 }
+
+/// Evaluates parameter bindings (expressions of other parameters) in dependency order;
+/// `overrides` replace bindings. A parameter without a binding is 0 (a guess for one
+/// computed at initialization). Fails with the parameters whose bindings depend on each
+/// other or on variables.
+pub fn evaluate_bindings(
+    arena: &Arena,
+    bindings: &[Option<Id>],
+    overrides: &crate::hash::HashMap<usize, f64>,
+) -> Result<Vec<f64>, Vec<usize>> {
+    let np = bindings.len();
+    let mut values: Vec<Option<f64>> = vec![None; np];
+    for (&j, &v) in overrides {
+        values[j] = Some(v);
+    }
+    loop {
+        let mut progress = false;
+        let mut missing = Vec::new();
+        for j in 0..np {
+            if values[j].is_some() {
+                continue;
+            }
+            let Some(e) = bindings[j] else {
+                values[j] = Some(0.0);
+                progress = true;
+                continue;
+            };
+            let v = arena.eval(e, &|n: &Node| match n {
+                Node::Param(k) => values.get(*k as usize).copied().flatten(),
+                _ => None,
+            });
+            match v {
+                Some(v) => {
+                    values[j] = Some(v);
+                    progress = true;
+                }
+                None => missing.push(j),
+            }
+        }
+        if missing.is_empty() {
+            break;
+        }
+        if !progress {
+            return Err(missing);
+        }
+    }
+    Ok(values.into_iter().map(|v| v.unwrap_or(0.0)).collect())
+}

@@ -60,6 +60,9 @@ pub struct FlatEquation {
     pub residual: Id,
     /// Where it came from.
     pub origin: Origin,
+    /// The variable on the left-hand side, when it is a lone variable as written
+    /// (`frame_b.R.T[1,1] = ...`).
+    pub lhs_var: Option<u32>,
 }
 
 /// A flattened model: numbered variables and parameters, and scalar equations in a local
@@ -234,10 +237,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                 path: s.path.clone(),
                 equation: *eq,
             };
-            if let Some(r) = f.translate_equation(eq, &origin) {
+            if let Some((r, lhs_var)) = f.translate_equation(eq, &origin) {
                 f.flat.equations.push(FlatEquation {
                     residual: r,
                     origin,
+                    lhs_var,
                 });
             }
         }
@@ -246,10 +250,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                 path: s.path.clone(),
                 equation: *eq,
             };
-            if let Some(r) = f.translate_equation(eq, &origin) {
+            if let Some((r, lhs_var)) = f.translate_equation(eq, &origin) {
                 f.flat.initial_equations.push(FlatEquation {
                     residual: r,
                     origin,
+                    lhs_var,
                 });
             }
         }
@@ -275,10 +280,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             text: ge.text,
             equation: ge.equation,
         };
-        if let Some(r) = f.translate_equation(&ge.equation, &origin) {
+        if let Some((r, lhs_var)) = f.translate_equation(&ge.equation, &origin) {
             f.flat.equations.push(FlatEquation {
                 residual: r,
                 origin,
+                lhs_var,
             });
         }
     }
@@ -362,10 +368,14 @@ impl Flattener<'_> {
 
     /// `lhs - rhs` of an equation in the local arena (built there, so the global lock
     /// held by the flattener is never taken twice).
-    fn translate_equation(&mut self, eq: &Equation, origin: &Origin) -> Option<Id> {
+    fn translate_equation(&mut self, eq: &Equation, origin: &Origin) -> Option<(Id, Option<u32>)> {
         let l = self.translate(eq.lhs, origin)?;
         let r = self.translate(eq.rhs, origin)?;
-        Some(self.flat.arena.sub(l, r))
+        let lhs_var = match self.flat.arena.node(l) {
+            Node::Var(i) => Some(*i),
+            _ => None,
+        };
+        Some((self.flat.arena.sub(l, r), lhs_var))
     }
 
     fn translate(&mut self, e: Expr, origin: &Origin) -> Option<Id> {
@@ -501,6 +511,7 @@ impl Flattener<'_> {
                                 a: self.flat.variables[va].name.clone(),
                                 b: self.flat.variables[vb].name.clone(),
                             },
+                            lhs_var: None,
                         });
                     }
                 }
@@ -560,6 +571,7 @@ impl Flattener<'_> {
                 self.flat.equations.push(FlatEquation {
                     residual: r,
                     origin: Origin::FlowSum { flows: names },
+                    lhs_var: None,
                 });
             }
         }
@@ -577,6 +589,7 @@ impl Flattener<'_> {
                         origin: Origin::UnconnectedFlow {
                             flow: self.flat.variables[v].name.clone(),
                         },
+                        lhs_var: None,
                     });
                 }
             }

@@ -10,7 +10,7 @@ mod system;
 mod typed;
 mod variable;
 
-pub use balance::check_balance;
+pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};

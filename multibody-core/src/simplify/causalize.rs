@@ -108,13 +108,16 @@ pub struct Singular {
     pub under_unknowns: Vec<Id>,
 }
 
-/// Source of fresh leaves for temporaries.
-pub struct Temporaries {
+/// Source of fresh leaves for temporaries, and the parameter values that decide which
+/// coefficients can vanish.
+pub struct Temporaries<'p> {
     /// The next free variable index for a temporary leaf.
     pub next: u32,
+    /// Values of the parameters (by index).
+    pub params: &'p [f64],
 }
 
-impl Temporaries {
+impl Temporaries<'_> {
     fn fresh(&mut self, arena: &mut Arena) -> Id {
         let v = arena.var(self.next);
         self.next += 1;
@@ -122,17 +125,25 @@ impl Temporaries {
     }
 }
 
-/// Whether `coefficient` cannot vanish: a nonzero constant or an expression of
-/// parameters only (parameters are taken to be valid, as MSL does for masses and
-/// inertias).
-pub fn safe_coefficient(arena: &Arena, coefficient: Id) -> bool {
+/// Whether `coefficient` cannot vanish: a nonzero constant, or an expression of
+/// parameters only that is nonzero for the parameter values `params` (the defaults:
+/// products of inertia are 0 by default, masses are not).
+pub fn safe_coefficient(arena: &Arena, coefficient: Id, params: &[f64]) -> bool {
     if let Some(c) = arena.as_const(coefficient) {
         return c != 0.0 && c.is_finite();
     }
-    arena
+    let only_params = arena
         .leaves(coefficient)
         .iter()
-        .all(|&l| matches!(arena.node(l), Node::Param(_)))
+        .all(|&l| matches!(arena.node(l), Node::Param(_)));
+    if !only_params {
+        return false;
+    }
+    let v = arena.eval(coefficient, &|n: &Node| match n {
+        Node::Param(j) => params.get(*j as usize).copied(),
+        _ => None,
+    });
+    matches!(v, Some(v) if v != 0.0 && v.is_finite())
 }
 
 /// Causalizes `equations` (residuals) for the `unknowns` (leaves); every other leaf is
@@ -142,7 +153,7 @@ pub fn causalize(
     equations: &[Id],
     unknowns: &[Id],
     limits: LinearBlockLimits,
-    temps: &mut Temporaries,
+    temps: &mut Temporaries<'_>,
 ) -> Result<Schedule, Singular> {
     let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     let mut g = BipartiteGraph::new(unknowns.len());
@@ -177,6 +188,7 @@ pub fn causalize(
                 equations[eqs[0]],
                 eqs[0],
                 unknowns[vars[0]],
+                temps.params,
                 &mut out,
             );
         } else {
@@ -196,9 +208,9 @@ pub fn causalize(
     Ok(out)
 }
 
-fn scalar_block(arena: &mut Arena, r: Id, e: usize, x: Id, out: &mut Schedule) {
+fn scalar_block(arena: &mut Arena, r: Id, e: usize, x: Id, params: &[f64], out: &mut Schedule) {
     match arena.solve_linear(r, x) {
-        Some(sol) if safe_coefficient(arena, sol.coefficient) => {
+        Some(sol) if safe_coefficient(arena, sol.coefficient, params) => {
             out.steps.push(Step::Assign {
                 target: x,
                 expr: sol.solution,
@@ -238,7 +250,7 @@ fn solve_block(
     eq_ids: &[usize],
     vars: &[Id],
     limits: LinearBlockLimits,
-    temps: &mut Temporaries,
+    temps: &mut Temporaries<'_>,
     out: &mut Schedule,
 ) {
     let k = vars.len();
@@ -255,7 +267,7 @@ fn solve_block(
             if depends {
                 linear = false;
             }
-            let solvable = !depends && safe_coefficient(arena, coef);
+            let solvable = !depends && safe_coefficient(arena, coef, temps.params);
             tv.push((j, solvable));
         }
         teqs.push(TearingEquation { vars: tv });
@@ -331,7 +343,7 @@ fn inline_linear(
     torn: &[Id],
     assignments: &[(usize, Id)],
     residual_eqs: &[usize],
-    temps: &mut Temporaries,
+    temps: &mut Temporaries<'_>,
     out: &mut Schedule,
 ) {
     let solutions: Vec<(Id, Id, usize)> = assignments

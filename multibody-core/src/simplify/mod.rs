@@ -65,12 +65,31 @@ pub fn structural_simplify_with(
     let kept: Vec<bool> = aliases.replaced.iter().map(Option::is_none).collect();
     let names: Vec<String> = flat.variables.iter().map(|v| v.name.clone()).collect();
     let priority: Vec<f64> = flat.variables.iter().map(|v| v.state_priority).collect();
-    let equations: Vec<(Id, String)> = flat
-        .equations
+    // Equations that define a variable with a derivative rule (an orientation matrix
+    // entry) are solved for it and never differentiated.
+    let mut has_rule = vec![false; nv];
+    for &(x, _) in &flat.derivative_rules {
+        has_rule[x as usize] = true;
+    }
+    let kept_eqs: Vec<usize> = (0..flat.equations.len())
+        .filter(|&e| !aliases.removed[e])
+        .collect();
+    let equations: Vec<(Id, String)> = kept_eqs
         .iter()
-        .enumerate()
-        .filter(|(e, _)| !aliases.removed[*e])
-        .map(|(_, eq)| (eq.residual, flat.describe(eq)))
+        .map(|&e| {
+            (
+                flat.equations[e].residual,
+                flat.describe(&flat.equations[e]),
+            )
+        })
+        .collect();
+    let definitions: Vec<bool> = kept_eqs
+        .iter()
+        .map(|&e| {
+            flat.equations[e]
+                .lhs_var
+                .is_some_and(|v| has_rule[v as usize])
+        })
         .collect();
     // Initial equations and start values under the same substitutions.
     let mut full_map = aliases.map.clone();
@@ -98,6 +117,7 @@ pub fn structural_simplify_with(
             kept: &kept,
             derivative_map: &aliases.derivative_map,
             equations,
+            definitions,
             show: &show,
         },
         &name,
@@ -110,7 +130,14 @@ pub fn structural_simplify_with(
         .map(|s| reduced.slots[s].leaf)
         .collect();
     let residuals: Vec<Id> = reduced.equations.iter().map(|e| e.residual).collect();
-    let mut temps = Temporaries { next: nv as u32 };
+    // Default parameter values decide which coefficients may vanish.
+    let default_params =
+        crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
+            .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
+    let mut temps = Temporaries {
+        next: nv as u32,
+        params: &default_params,
+    };
     let schedule = causalize(
         &mut flat.arena,
         &residuals,
@@ -217,6 +244,13 @@ pub fn structural_simplify_with(
             rows: &code_rows,
             observed: &observed,
             n_params: flat.parameters.len(),
+            names: &|id| {
+                reduced
+                    .slot_of
+                    .get(&id)
+                    .map(|&s| reduced.slots[s].name.clone())
+                    .unwrap_or_else(|| format!("{id:?}"))
+            },
         },
     )
     .map_err(|e| SimplifyError::Codegen {

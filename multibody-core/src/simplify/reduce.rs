@@ -133,6 +133,8 @@ pub(crate) struct ReduceInput<'a> {
     pub derivative_map: &'a HashMap<Id, Id>,
     /// Equations: residual and text.
     pub equations: Vec<(Id, String)>,
+    /// Per equation: whether it defines a variable with a derivative rule.
+    pub definitions: Vec<bool>,
     /// Displays an expression (for messages).
     pub show: &'a dyn Fn(&Arena, Id) -> String,
 }
@@ -166,6 +168,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         kept,
         derivative_map,
         equations,
+        definitions,
         show,
     } = input;
     let mut table = SlotTable {
@@ -195,7 +198,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     var_diff.resize(n_slots, None);
     implicit.resize(n_slots, Vec::new());
     graph.n_vars = n_slots;
-    let red = match pantelides_with_implicit(&graph, &var_diff, &implicit) {
+    let red = match pantelides_with_implicit(&graph, &var_diff, &implicit, &definitions) {
         Ok(r) => r,
         Err(StructurallySingular {
             equations,

@@ -215,8 +215,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
 
     // Sort, tear and compile the initialization system.
     let residuals: Vec<Id> = eqs.iter().map(|e| e.0).collect();
+    let mut known: Vec<f64> = input.params.clone();
+    known.extend(input.starts.iter().map(|s| s.unwrap_or(0.0)));
     let mut temps = Temporaries {
         next: sys.next_temporary,
+        params: &known,
     };
     let schedule = causalize(
         &mut arena,
@@ -244,6 +247,12 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             rows: &rows,
             observed: &observed,
             n_params: np + nv,
+            names: &|id| {
+                sys.slot_of
+                    .get(&id)
+                    .map(|&s| sys.slots[s].name.clone())
+                    .unwrap_or_else(|| format!("{id:?}"))
+            },
         },
     )
     .map_err(|e| InitError::BadValue {

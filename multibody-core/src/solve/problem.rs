@@ -44,55 +44,19 @@ pub(crate) fn parameter_values(
     sys: &SimplifiedSystem,
     overrides: &HashMap<usize, f64>,
 ) -> Result<Vec<f64>, InitError> {
-    let np = sys.parameters.len();
-    let mut values: Vec<Option<f64>> = vec![None; np];
-    for (&j, &v) in overrides {
-        values[j] = Some(v);
-    }
-    // Repeated sweeps: a binding is evaluated once all parameters it uses are known.
-    loop {
-        let mut progress = false;
-        let mut missing = Vec::new();
-        for j in 0..np {
-            if values[j].is_some() {
-                continue;
-            }
-            let Some(e) = sys.parameter_values[j] else {
-                // Computed at initialization with no binding: guess 0.
-                values[j] = Some(0.0);
-                progress = true;
-                continue;
-            };
-            let v = sys.arena.eval(e, &|n: &Node| match n {
-                Node::Param(k) => values.get(*k as usize).copied().flatten(),
-                _ => None,
-            });
-            match v {
-                Some(v) => {
-                    values[j] = Some(v);
-                    progress = true;
-                }
-                None => missing.push(j),
-            }
-        }
-        if missing.is_empty() {
-            break;
-        }
-        if !progress {
-            return Err(InitError::BadValue {
-                model: sys.name.clone(),
-                message: format!(
-                    "the values of {} depend on each other or on variables",
-                    missing
-                        .iter()
-                        .map(|&j| format!("`{}`", sys.parameters[j].name))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            });
-        }
-    }
-    Ok(values.into_iter().map(|v| v.unwrap_or(0.0)).collect())
+    crate::model::evaluate_bindings(&sys.arena, &sys.parameter_values, overrides).map_err(
+        |missing| InitError::BadValue {
+            model: sys.name.clone(),
+            message: format!(
+                "the values of {} depend on each other or on variables",
+                missing
+                    .iter()
+                    .map(|&j| format!("`{}`", sys.parameters[j].name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        },
+    )
 }
 
 fn eval_with_params(arena: &Arena, e: Id, params: &[f64]) -> Option<f64> {

@@ -192,27 +192,36 @@ pub fn pantelides(
     graph: &BipartiteGraph,
     var_diff: &[Option<usize>],
 ) -> Result<IndexReduction, StructurallySingular> {
-    pantelides_with_implicit(graph, var_diff, &[])
+    pantelides_with_implicit(graph, var_diff, &[], &[])
 }
 
 /// [`pantelides`] for systems where some slots have an *implicit* derivative: an
-/// expression of other slots rather than a slot of its own (an orientation matrix, whose
-/// derivative is `-skew(w) T`). `implicit[v]` lists the slots that derivative contains
-/// (empty for ordinary slots; the slice may be shorter than the number of slots). Such
-/// a slot never gets a derivative slot: it stays an algebraic unknown, and a
-/// differentiated equation contains the slots of its implicit derivative instead.
+/// expression of other slots rather than a slot of its own (the entries of an
+/// orientation matrix, whose derivative is `-skew(w) T`). `implicit[v]` lists the slots
+/// that derivative contains (empty for ordinary slots; the slice may be shorter than the
+/// number of slots), and `definitions[e]` marks the equations that define implicit slots
+/// (`T_b = T_rel T_a`).
+///
+/// Implicit slots and their defining equations stay out of the matching: the definitions
+/// are solved for the implicit slots explicitly and never differentiated (their
+/// derivatives are the angular-velocity equations, already in the system). In any other
+/// equation an implicit slot counts as known at its own level, and differentiating the
+/// equation brings in the slots of its implicit derivative.
 pub fn pantelides_with_implicit(
     graph: &BipartiteGraph,
     var_diff: &[Option<usize>],
     implicit: &[Vec<usize>],
+    definitions: &[bool],
 ) -> Result<IndexReduction, StructurallySingular> {
     let is_implicit = |v: usize| implicit.get(v).is_some_and(|d| !d.is_empty());
+    let is_definition = |e: usize| definitions.get(e).copied().unwrap_or(false);
     assert_eq!(
         var_diff.len(),
         graph.n_vars,
         "pantelides: one var_diff entry per slot"
     );
-    // Solvability: a perfect matching of equations to derivative chains.
+    // Solvability: a perfect matching of all equations (definitions included) to the
+    // derivative chains (an implicit slot is a chain of its own).
     let (chains, base) = chain_graph(graph, var_diff);
     let allowed: Vec<bool> = (0..graph.n_vars).map(|v| base[v] == v).collect();
     let cm = maximum_matching(&chains, Some(&allowed), None);
@@ -230,7 +239,18 @@ pub fn pantelides_with_implicit(
         });
     }
 
-    let mut adj: Vec<Vec<usize>> = graph.eq_vars.clone();
+    // Matching graph: implicit slots removed (they are known inside the matching).
+    let mut adj: Vec<Vec<usize>> = graph
+        .eq_vars
+        .iter()
+        .map(|vars| vars.iter().copied().filter(|&v| !is_implicit(v)).collect())
+        .collect();
+    // The implicit slots of each equation, for its derivative.
+    let mut hidden: Vec<Vec<usize>> = graph
+        .eq_vars
+        .iter()
+        .map(|vars| vars.iter().copied().filter(|&v| is_implicit(v)).collect())
+        .collect();
     let mut var_diff: Vec<Option<usize>> = var_diff.to_vec();
     let mut eq_diff: Vec<Option<usize>> = vec![None; adj.len()];
     let mut var_eq: Vec<Option<usize>> = vec![None; var_diff.len()];
@@ -241,6 +261,9 @@ pub fn pantelides_with_implicit(
     let mut rounds = 0usize;
 
     for k in 0..n_original {
+        if is_definition(k) {
+            continue;
+        }
         let mut i = k;
         loop {
             let n_vars = var_diff.len();
@@ -271,7 +294,7 @@ pub fn pantelides_with_implicit(
                 });
             }
             for &v in &colored_vars {
-                if var_diff[v].is_none() && !is_implicit(v) {
+                if var_diff[v].is_none() {
                     let w = var_diff.len();
                     var_diff.push(None);
                     var_eq.push(None);
@@ -281,18 +304,29 @@ pub fn pantelides_with_implicit(
             for &e in &colored_eqs {
                 if eq_diff[e].is_none() {
                     let mut vars: Vec<usize> = Vec::with_capacity(adj[e].len() * 2);
+                    let mut hid: Vec<usize> = hidden[e].clone();
                     for &v in &adj[e] {
                         vars.push(v);
                         if let Some(d) = var_diff[v] {
                             vars.push(d);
-                        } else if is_implicit(v) {
-                            vars.extend(implicit[v].iter().copied());
+                        }
+                    }
+                    for &h in &hidden[e] {
+                        for &d in &implicit[h] {
+                            if is_implicit(d) {
+                                hid.push(d);
+                            } else {
+                                vars.push(d);
+                            }
                         }
                     }
                     vars.sort_unstable();
                     vars.dedup();
+                    hid.sort_unstable();
+                    hid.dedup();
                     let ne = adj.len();
                     adj.push(vars);
+                    hidden.push(hid);
                     eq_diff.push(None);
                     eq_var.push(None);
                     eq_diff[e] = Some(ne);
@@ -301,16 +335,6 @@ pub fn pantelides_with_implicit(
             // The derivatives of the colored slots inherit the derivatives of their
             // equations; the old pairs are dropped (lower-order slots leave the matching).
             for &v in &colored_vars {
-                if is_implicit(v) {
-                    // No derivative slot: the slot stays in the highest-order set and
-                    // looks for a new equation by later augmenting paths.
-                    if let Some(e) = var_eq[v].take()
-                        && eq_var[e] == Some(v)
-                    {
-                        eq_var[e] = None;
-                    }
-                    continue;
-                }
                 if let Some(e) = var_eq[v] {
                     let dv = var_diff[v].expect("created above");
                     let de = eq_diff[e].expect("colored equation was differentiated");
@@ -324,6 +348,10 @@ pub fn pantelides_with_implicit(
             }
             i = eq_diff[i].expect("the failed equation is colored");
         }
+    }
+    // The final graph has the full incidence (implicit slots included).
+    for (e, h) in hidden.iter().enumerate() {
+        adj[e].extend(h.iter().copied());
     }
     let mut g = BipartiteGraph::new(var_diff.len());
     for vars in adj {

@@ -1,0 +1,90 @@
+//! Line forces: spring, damper, and both in parallel.
+
+use crate::frames::{Vec3, resolve2};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+
+component! {
+    /// The geometry of a line force between two frames (MSL `LineForceBase` and
+    /// `PartialLineForce`): the force `f` acts along the line between the frames; `f > 0`
+    /// is tension (it pulls the frames towards each other). No torques act on the frames.
+    #[type_name = "MultiBody.Forces.PartialLineForce"]
+    pub struct PartialLineForce {
+        /// Prevents a division by zero when the frames coincide \[m\].
+        parameter s_small: f64 = 1e-10;
+        /// First frame.
+        connector frame_a: Frame;
+        /// Second frame.
+        connector frame_b: Frame;
+        /// Distance between the frame origins \[m\].
+        variable length: Real;
+        /// `max(length, s_small)` \[m\].
+        variable s: Real;
+        /// Unit vector from `frame_a` to `frame_b`, resolved in world.
+        variable e_rel_0: Vec3;
+        /// Tension force along the line \[N\].
+        variable f: Real;
+        equation {
+            let r_rel_0 = frame_b.r_0 - frame_a.r_0;
+            length = r_rel_0.norm();
+            s = max(length, s_small);
+            e_rel_0 = r_rel_0.scale(1.0 / s);
+            frame_a.f = -resolve2(&frame_a.R, e_rel_0).scale(f);
+            frame_b.f = resolve2(&frame_b.R, e_rel_0).scale(f);
+            frame_a.t = Vec3::zero();
+            frame_b.t = Vec3::zero();
+        }
+    }
+}
+
+component! {
+    /// A linear, massless spring along the line between two frames (MSL
+    /// `Forces.Spring`): tension `f = c (length - s_unstretched)`.
+    #[type_name = "MultiBody.Forces.Spring"]
+    pub struct Spring {
+        /// Spring constant \[N/m\].
+        parameter c: f64 = 1.0;
+        /// Unstretched length \[m\].
+        parameter s_unstretched: f64 = 0.0;
+        /// Coil radius when rendered \[m\].
+        structural radius: f64 = 0.05;
+        extends PartialLineForce { frame_a, frame_b, length, f };
+        equation {
+            f = c * (length - s_unstretched);
+        }
+    }
+}
+
+component! {
+    /// A linear, massless damper along the line between two frames (MSL
+    /// `Forces.Damper`): tension `f = d der(s)`.
+    #[type_name = "MultiBody.Forces.Damper"]
+    pub struct Damper {
+        /// Damping constant \[N.s/m\].
+        parameter d: f64 = 0.0;
+        extends PartialLineForce { frame_a, frame_b, s, f };
+        equation {
+            f = d * der(s);
+        }
+    }
+}
+
+component! {
+    /// A spring and a damper in parallel along the line between two frames (MSL
+    /// `Forces.SpringDamperParallel`): `f = c (s - s_unstretched) + d der(s)`.
+    #[type_name = "MultiBody.Forces.SpringDamperParallel"]
+    pub struct SpringDamperParallel {
+        /// Spring constant \[N/m\].
+        parameter c: f64 = 1.0;
+        /// Unstretched length \[m\].
+        parameter s_unstretched: f64 = 0.0;
+        /// Damping constant \[N.s/m\].
+        parameter d: f64 = 0.0;
+        /// Coil radius when rendered \[m\].
+        structural radius: f64 = 0.05;
+        extends PartialLineForce { frame_a, frame_b, s, f };
+        equation {
+            f = c * (s - s_unstretched) + d * der(s);
+        }
+    }
+}

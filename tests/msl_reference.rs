@@ -1,0 +1,158 @@
+//! MSL MultiBody examples against the Modelica Association's reference trajectories
+//! (../shared/reference/msl), every signal inside their 2e-3 tube.
+
+mod common;
+
+#[path = "../examples/pendulum.rs"]
+#[allow(dead_code)]
+mod pendulum_example;
+
+use common::assert_in_tube;
+use multibody::forces;
+use multibody::joints::{Prismatic, Revolute};
+use multibody::parts::{Body, BodyBox, FixedTranslation};
+use multibody::prelude::*;
+use multibody::rotational;
+use multibody::translational;
+use multibody::world::World;
+
+/// Dymola's settings for these files: DASSL at tolerance 1e-6, 5000 intervals. We use a
+/// tighter tolerance so the comparison measures the model, not the integrator.
+fn options(t_end: f64) -> SolverOptions {
+    SolverOptions {
+        rtol: 1e-8,
+        atol: 1e-10,
+        max_step: Some(t_end / 500.0),
+        ..SolverOptions::default()
+    }
+}
+
+#[test]
+fn pendulum() {
+    let ssys = structural_simplify(&pendulum_example::pendulum()).unwrap();
+    assert_eq!(ssys.states().len(), 2);
+    let sol = DaeProblem::new(&ssys, &[("rev.phi", 0.0), ("rev.w", 0.0)], (0.0, 5.0))
+        .unwrap()
+        .solve(&options(5.0))
+        .unwrap();
+    assert_in_tube("Pendulum", &sol, &["rev.phi", "rev.w"]);
+}
+
+#[test]
+fn double_pendulum() {
+    let model = system! {
+        name: "DoublePendulum";
+        world = World::default();
+        revolute1 = Revolute { n: [0.0, 0.0, 1.0], axisflange: true };
+        damper = rotational::Damper { d: 0.1 };
+        box_body1 = BodyBox { r: [0.5, 0.0, 0.0], width: Some(0.06) };
+        revolute2 = Revolute { n: [0.0, 0.0, 1.0] };
+        box_body2 = BodyBox { r: [0.5, 0.0, 0.0], width: Some(0.06) };
+        connect(damper.flange_b, revolute1.axis);
+        connect(revolute1.support, damper.flange_a);
+        connect(world.frame_b, revolute1.frame_a);
+        connect(revolute1.frame_b, box_body1.frame_a);
+        connect(box_body1.frame_b, revolute2.frame_a);
+        connect(revolute2.frame_b, box_body2.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states().len(), 4);
+    let start = [
+        ("revolute1.phi", 0.0),
+        ("revolute1.w", 0.0),
+        ("revolute2.phi", 0.0),
+        ("revolute2.w", 0.0),
+    ];
+    let sol = DaeProblem::new(&ssys, &start, (0.0, 3.0))
+        .unwrap()
+        .solve(&options(3.0))
+        .unwrap();
+    assert_in_tube(
+        "DoublePendulum",
+        &sol,
+        &[
+            "revolute1.phi",
+            "revolute1.w",
+            "revolute2.phi",
+            "revolute2.w",
+        ],
+    );
+}
+
+#[test]
+fn pendulum_with_spring_damper() {
+    let model = system! {
+        name: "PendulumWithSpringDamper";
+        world = World::default();
+        bar1 = FixedTranslation { r: [0.3, 0.0, 0.0] };
+        revolute = Revolute { n: [0.0, 0.0, 1.0] };
+        prismatic = Prismatic { n: [1.0, 0.0, 0.0] };
+        body1 = Body { m: 1.0, I_11: 1.0, I_22: 1.0, I_33: 1.0, r_CM: [0.0, 0.0, 0.0] };
+        spring1 = forces::Spring { c: 20.0, s_unstretched: 0.2 };
+        damper1 = forces::Damper { d: 1.0 };
+        connect(world.frame_b, bar1.frame_a);
+        connect(bar1.frame_b, revolute.frame_a);
+        connect(revolute.frame_b, prismatic.frame_a);
+        connect(prismatic.frame_b, body1.frame_a);
+        connect(bar1.frame_b, spring1.frame_a);
+        connect(spring1.frame_b, prismatic.frame_b);
+        connect(bar1.frame_b, damper1.frame_a);
+        connect(damper1.frame_b, prismatic.frame_b);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states().len(), 4);
+    let start = [
+        ("revolute.phi", 0.0),
+        ("revolute.w", 0.0),
+        ("prismatic.s", 0.5),
+        ("prismatic.v", 0.0),
+    ];
+    let sol = DaeProblem::new(&ssys, &start, (0.0, 10.0))
+        .unwrap()
+        .solve(&options(10.0))
+        .unwrap();
+    assert_in_tube(
+        "PendulumWithSpringDamper",
+        &sol,
+        &["prismatic.s", "prismatic.v", "revolute.phi", "revolute.w"],
+    );
+}
+
+#[test]
+fn spring_mass_system() {
+    let model = system! {
+        name: "SpringMassSystem";
+        world = World::default();
+        bar1 = FixedTranslation { r: [0.3, 0.0, 0.0] };
+        p1 = Prismatic { n: [0.0, -1.0, 0.0], axisflange: true };
+        spring1 = translational::Spring { c: 30.0, s_rel0: 0.1 };
+        body1 = Body { m: 1.0, r_CM: [0.0, 0.0, 0.0] };
+        bar2 = FixedTranslation { r: [0.3, 0.0, 0.0] };
+        p2 = Prismatic { n: [0.0, -1.0, 0.0], state_priority: 1000.0 };
+        body2 = Body { m: 1.0, r_CM: [0.0, 0.0, 0.0] };
+        spring2 = forces::Spring { c: 30.0, s_unstretched: 0.1 };
+        connect(world.frame_b, bar1.frame_a);
+        connect(bar1.frame_b, p1.frame_a);
+        connect(p1.frame_b, body1.frame_a);
+        connect(p1.support, spring1.flange_a);
+        connect(spring1.flange_b, p1.axis);
+        connect(bar1.frame_b, bar2.frame_a);
+        connect(bar2.frame_b, p2.frame_a);
+        connect(p2.frame_b, body2.frame_a);
+        connect(bar2.frame_b, spring2.frame_a);
+        connect(spring2.frame_b, body2.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states().len(), 4);
+    let start = [("p1.s", 0.1), ("p1.v", 0.0), ("p2.s", 0.1), ("p2.v", 0.0)];
+    let sol = DaeProblem::new(&ssys, &start, (0.0, 5.0))
+        .unwrap()
+        .solve(&options(5.0))
+        .unwrap();
+    assert_in_tube("SpringMassSystem", &sol, &["p1.s", "p1.v", "p2.s", "p2.v"]);
+    // Both halves follow s'' = g - 30 (s - 0.1).
+    let (s1, s2) = (sol.get("p1.s").unwrap(), sol.get("p2.s").unwrap());
+    for k in 0..s1.len() {
+        assert!((s1[k] - s2[k]).abs() < 1e-6);
+    }
+}
