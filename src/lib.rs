@@ -43,6 +43,7 @@ pub mod interfaces;
 pub mod joints;
 pub mod parts;
 pub mod rotational;
+pub mod sensors;
 pub mod translational;
 pub mod world;
 
@@ -80,9 +81,9 @@ pub mod prelude {
 pub mod __private {
     pub use multibody_core::expr::Expr;
     pub use multibody_core::model::{
-        Component, Connector, ConnectorHandle, Parameter, ParameterType, PathId, Signal,
+        Component, Connector, ConnectorHandle, Parameter, ParameterType, PathId, Signal, Signal3,
         StateSelect, System, TypedComponent, VarKind, Variable, VariableType, declare_signal,
-        member, signal_at,
+        declare_signal3, member, signal_at, signal3_at,
     };
 
     /// The functions equations use (`der`, `sin`, ...).

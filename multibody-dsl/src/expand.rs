@@ -337,6 +337,19 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
     if let Some((role, ty)) = &def.signal {
         let kind = role_tokens(*role);
         let class = format!("signal:{ty}");
+        let (handle_ty, declare, at) = if ty == "Vec3" {
+            (
+                quote!(#p::Signal3),
+                quote!(#p::declare_signal3),
+                quote!(#p::signal3_at),
+            )
+        } else {
+            (
+                quote!(#p::Signal),
+                quote!(#p::declare_signal),
+                quote!(#p::signal_at),
+            )
+        };
         let attrs = docs_escaped(attrs);
         return Ok(quote! {
             #attrs
@@ -351,14 +364,14 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
                     ::core::option::Option::Some(::std::string::String::from(#class))
                 }
                 fn build(&self, __s: &mut #p::System) {
-                    #p::declare_signal(__s, #kind, #desc);
+                    #declare(__s, #kind, #desc);
                 }
             }
 
             impl #p::Connector for #name {
-                type Handle = #p::Signal;
-                fn handle(path: &str) -> #p::Signal {
-                    #p::signal_at(path)
+                type Handle = #handle_ty;
+                fn handle(path: &str) -> #handle_ty {
+                    #at(path)
                 }
             }
         });

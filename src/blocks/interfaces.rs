@@ -12,6 +12,16 @@ connector! {
     pub struct RealOutput = output Real;
 }
 
+connector! {
+    /// A vector of three real input signals (MSL `RealInput[3]`).
+    pub struct RealInput3 = input Vec3;
+}
+
+connector! {
+    /// A vector of three real output signals (MSL `RealOutput[3]`).
+    pub struct RealOutput3 = output Vec3;
+}
+
 /// How a continuous block initializes its state (MSL `Modelica.Blocks.Types.Init`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Init {

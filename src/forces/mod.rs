@@ -7,5 +7,7 @@
 //! loop.
 
 mod line;
+mod signal;
 
 pub use line::*;
+pub use signal::*;

@@ -298,6 +298,30 @@ pub fn axes_rotations_angles(
     [a1, a2, a3]
 }
 
+/// The angles of the rotation sequence `sequence` that give the rotation matrix `t`,
+/// symbolically (the inverse of [`axes_rotations`], as [`axes_rotations_angles`]): of
+/// the two solutions, the one whose first angle is nearer `guess_angle1`.
+pub fn axes_rotations_angles_expr(t: Mat3, sequence: [usize; 3], guess_angle1: f64) -> Vec3 {
+    assert!(
+        sequence[0] != sequence[1] && sequence[1] != sequence[2],
+        "axes_rotations_angles: consecutive axes must differ"
+    );
+    let e1_1 = axis(sequence[0]);
+    let e2_1a = axis(sequence[1]);
+    let e3_1 = t.row(sequence[2] - 1);
+    let e3_2 = axis(sequence[2]);
+    let a = e2_1a.dot(e3_1);
+    let b = e1_1.cross(e2_1a).dot(e3_1);
+    let a1a = a.atan2(-b);
+    let a1b = (-a).atan2(b);
+    let g = c(guess_angle1);
+    let a1 = Expr::if_else((a1a - g).abs().le((a1b - g).abs()), a1a, a1b);
+    let t_1a = planar_rotation(e1_1, a1, c(0.0)).T;
+    let a2 = planar_rotation_angle(e2_1a, t_1a.mul_vec(e3_1), e3_2);
+    let a3 = planar_rotation_angle(e3_2, e2_1a, t.mul_vec(t_1a.transpose().mul_vec(e2_1a)));
+    Vec3([a1, a2, a3])
+}
+
 /// Rotation angles about the axes of frame 1 for a small rotation:
 /// `{T[2,3], -T[1,3], T[1,2]}`.
 pub fn small_rotation(r: &Orientation) -> Vec3 {

@@ -6,11 +6,17 @@
 //! residues between `frame_b`'s orientation and the one its coordinates imply, and each
 //! frame gets its orientation from elsewhere.
 
+mod composite;
+mod planar_loop;
 mod prismatic;
 mod revolute;
+mod spherical;
 
+pub use composite::*;
+pub use planar_loop::*;
 pub use prismatic::*;
 pub use revolute::*;
+pub use spherical::*;
 
 use crate::frames::Vec3;
 

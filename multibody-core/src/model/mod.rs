@@ -16,8 +16,8 @@ pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use system::{Component, Connection, Equation, System, join_path};
 pub use typed::{
-    Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, TypedComponent,
-    VariableType, declare_signal, member, signal_at,
+    Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,
+    TypedComponent, VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,
 };
 pub use variable::{Parameter, StateSelect, VarKind, Variable};
 

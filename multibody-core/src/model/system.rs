@@ -84,6 +84,8 @@ pub fn join_path(path: &str, local: &str) -> String {
     match (path.is_empty(), local.is_empty()) {
         (true, _) => local.to_string(),
         (_, true) => path.to_string(),
+        // An element of the system itself (a vector signal connector's `[1]`).
+        _ if local.starts_with('[') => format!("{path}{local}"),
         _ => format!("{path}.{local}"),
     }
 }

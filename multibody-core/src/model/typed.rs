@@ -99,6 +99,66 @@ impl std::ops::Neg for Signal {
     }
 }
 
+/// A causal vector signal connector's handle (`RealInput3`): the connector is the
+/// 3-vector itself (`force[1]`, `force[2]`, `force[3]`).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Signal3 {
+    /// The three signals.
+    pub value: crate::expr::Vec3,
+    /// The connector's path.
+    pub path: PathId,
+}
+
+impl ConnectorHandle for Signal3 {
+    fn path(&self) -> String {
+        self.path.as_string()
+    }
+}
+
+impl std::ops::Deref for Signal3 {
+    type Target = crate::expr::Vec3;
+    fn deref(&self) -> &crate::expr::Vec3 {
+        &self.value
+    }
+}
+
+impl From<Signal3> for crate::expr::Vec3 {
+    fn from(s: Signal3) -> crate::expr::Vec3 {
+        s.value
+    }
+}
+
+impl std::ops::Neg for Signal3 {
+    type Output = crate::expr::Vec3;
+    fn neg(self) -> crate::expr::Vec3 {
+        -self.value
+    }
+}
+
+impl<R: Into<crate::expr::Vec3>> Equate<R> for Signal3 {
+    fn pairs(self, rhs: R) -> Vec<(Expr, Expr)> {
+        self.value.pairs(rhs)
+    }
+}
+
+/// Declares the three variables of a vector signal connector.
+pub fn declare_signal3(s: &mut System, kind: VarKind, description: &str) -> Signal3 {
+    let value =
+        crate::expr::Vec3::declare(s, Variable::new("").kind(kind).description(description));
+    Signal3 {
+        value,
+        path: PathId::new(&s.path),
+    }
+}
+
+/// The handle of a vector signal connector at `path`.
+pub fn signal3_at(path: &str) -> Signal3 {
+    Signal3 {
+        value: crate::expr::Vec3::at(path),
+        path: PathId::new(path),
+    }
+}
+
 /// A type a component may declare as a variable (`Real` for a scalar).
 pub trait VariableType: Copy {
     /// Declares the variable described by `template` (its name local to `s`) and

@@ -27,16 +27,20 @@ pub enum InitError {
         variables: Vec<String>,
     },
     /// Newton's method did not converge.
-    #[error("{}", newton_message(.model, .iterations, .residuals, .variables))]
+    #[error("{}", newton_message(.model, .iterations, .reason, .residuals, .variables, .conditions))]
     NotConverged {
         /// Model name.
         model: String,
         /// Iterations made.
         iterations: usize,
+        /// Why Newton stopped (a singular Jacobian, the iteration limit).
+        reason: String,
         /// The equations with the largest residuals, with their residual values.
         residuals: Vec<(String, f64)>,
         /// The iteration variables with their last values.
         variables: Vec<(String, f64)>,
+        /// The initial conditions in force: fixed start values and assumed ones.
+        conditions: Vec<(String, f64)>,
     },
     /// A fixed start value contradicts a value the model determines alone.
     #[error(
@@ -76,12 +80,25 @@ pub enum InitError {
 fn newton_message(
     model: &str,
     iterations: &usize,
+    reason: &str,
     residuals: &[(String, f64)],
     variables: &[(String, f64)],
+    conditions: &[(String, f64)],
 ) -> String {
     let mut m = format!(
-        "model `{model}`: initialization did not converge after {iterations} Newton iterations"
+        "model `{model}`: initialization did not converge after {iterations} Newton iterations ({reason})"
     );
+    if !conditions.is_empty() {
+        m.push_str(&format!(
+            "\n  initial conditions in force: {}",
+            conditions
+                .iter()
+                .take(12)
+                .map(|(n, v)| format!("{n} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     if !residuals.is_empty() {
         m.push_str("\n  largest residuals:");
         for (e, r) in residuals {

@@ -155,8 +155,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         (false, true) => 1,
         _ => 2,
     };
+    // Other variables qualify only if they could have been states (they have a
+    // derivative): never orientation matrix entries and the like.
     let mut candidates: Vec<usize> = (0..sys.slots.len())
-        .filter(|&s| is_state[s] || has_start(s))
+        .filter(|&s| is_state[s] || (has_start(s) && sys.var_diff[s].is_some()))
         .collect();
     candidates.sort_by(|&a, &b| {
         class(a)
@@ -294,11 +296,23 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .map(|(k, &l)| (init_name(sys, &arena, l), inputs[layout.u(k)]))
             .collect();
         log::debug!("initialization of `{model}` failed: {}", outcome.reason);
+        let mut conditions: Vec<(String, f64)> = (0..nv)
+            .filter(|&i| input.fixed[i])
+            .map(|i| {
+                (
+                    sys.variables[i].name.clone(),
+                    input.starts[i].unwrap_or(0.0),
+                )
+            })
+            .collect();
+        conditions.extend(assumed.iter().cloned());
         return Err(InitError::NotConverged {
             model,
             iterations: outcome.iterations,
+            reason: outcome.reason,
             residuals,
             variables,
+            conditions,
         });
     }
     let mut values = vec![0.0; unknowns.len()];

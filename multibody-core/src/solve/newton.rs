@@ -99,7 +99,8 @@ pub(crate) fn newton(
             return fail(it, &f, e.message);
         }
         if let Err(e) = lu.factorize(n, &col_ptr, &row_idx, &values) {
-            return fail(it, &f, format!("the Jacobian is singular ({e:?})"));
+            log::debug!("Newton: factorization failed: {e:?}");
+            return fail(it, &f, "the Jacobian is singular".into());
         }
         for i in 0..n {
             delta[i] = -f[i];
