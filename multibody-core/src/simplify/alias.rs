@@ -190,6 +190,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
                     let v = &flat.variables[x as usize];
                     (
                         v.fixed,
+                        v.kind != VarKind::Overdetermined,
                         v.state_priority,
                         v.start.is_some(),
                         v.kind == VarKind::Internal,
@@ -197,9 +198,10 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
                 };
                 let (ka, kb) = (key(a), key(b));
                 ka.0.cmp(&kb.0)
-                    .then(ka.1.total_cmp(&kb.1))
-                    .then(ka.2.cmp(&kb.2))
+                    .then(ka.1.cmp(&kb.1))
+                    .then(ka.2.total_cmp(&kb.2))
                     .then(ka.3.cmp(&kb.3))
+                    .then(ka.4.cmp(&kb.4))
                     .then(b.cmp(&a))
             })
             .expect("non-empty set");
