@@ -19,8 +19,10 @@ component! {
         parameter n: [f64; 3] = [0.0, -1.0, 0.0];
         /// Gravity field constant of point gravity \[m3/s2\] (the earth's by default).
         parameter mu: f64 = 3.986004418e14;
-        /// 1 for point gravity towards the world origin, 0 for uniform gravity.
-        parameter point_gravity: f64 = 0.0;
+        /// 1 for point gravity towards the world origin, 0 for uniform gravity; evaluated
+        /// at compile time (MSL's structural `gravityType`), so the other field costs
+        /// nothing.
+        parameter point_gravity(evaluate = true): f64 = 0.0;
         /// The world frame.
         connector frame_b: Frame;
         equation {

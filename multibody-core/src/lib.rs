@@ -15,6 +15,7 @@ pub mod names;
 pub mod plot;
 pub mod simplify;
 pub mod solve;
+pub(crate) mod sparse_lu;
 pub mod structure;
 
 pub use error::Error;

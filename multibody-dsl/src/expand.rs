@@ -40,8 +40,11 @@ pub fn escape_units(text: &str) -> String {
     let chars: Vec<char> = text.chars().collect();
     let mut i = 0;
     while i < chars.len() {
-        if chars[i] == '[' && (i == 0 || (chars[i - 1] != '\\' && chars[i - 1] != ']')) {
-            if let Some(len) = chars[i + 1..].iter().position(|&c| c == ']') {
+        if chars[i] == '['
+            && (i == 0 || (chars[i - 1] != '\\' && chars[i - 1] != ']'))
+            && let Some(len) = chars[i + 1..].iter().position(|&c| c == ']')
+        {
+            {
                 let inner: String = chars[i + 1..i + 1 + len].iter().collect();
                 let followed_by_link = chars
                     .get(i + 2 + len)

@@ -4,7 +4,7 @@
 
 use crate::expr::{Arena, Id, Node, is_leaf};
 
-use super::tape::{LsInfo, Op, Tape};
+use super::tape::{LsInfo, Op, SparsePattern, Tape};
 use super::{CodegenError, Stmt};
 
 /// A hash map with the fast hasher.
@@ -89,39 +89,92 @@ impl<'a> TapeBuilder<'a> {
                         c.len()
                     )));
                 }
-                for &t in targets {
-                    self.check_leaf(t)?;
-                }
-                let mut ra = Vec::with_capacity(k * k);
-                for &e in a {
-                    ra.push(self.compile(e)?);
-                }
-                let mut rc = Vec::with_capacity(k);
-                for &e in c {
-                    rc.push(self.compile(e)?);
-                }
-                let names = targets
-                    .iter()
-                    .map(|&t| self.describe(t))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                let base = self.ops.len() as u32;
-                self.ops.push(Op::LinearSolve(self.ls.len() as u32));
-                for _ in 1..k {
-                    self.ops.push(Op::LsPart);
-                }
-                self.ls.push(LsInfo {
-                    k,
-                    a: ra,
-                    c: rc,
-                    lu_off: 0,
-                    piv_off: 0,
-                    names,
-                });
-                for (i, &t) in targets.iter().enumerate() {
-                    self.bind(t, base + i as u32);
-                }
+                self.linear_solve(targets, a, None, c)?;
             }
+            Stmt::SparseLinearSolve {
+                targets,
+                entries,
+                c,
+            } => {
+                let k = targets.len();
+                if k == 0 || c.len() != k {
+                    return Err(CodegenError::BadLinearSolve(format!(
+                        "{k} targets need {k} constants, got {}",
+                        c.len()
+                    )));
+                }
+                let mut sorted: Vec<(usize, usize, Id)> = entries.clone();
+                sorted.sort_by_key(|&(r, col, _)| (col, r));
+                if let Some(&(r, col, _)) = sorted.iter().find(|&&(r, col, _)| r >= k || col >= k) {
+                    return Err(CodegenError::BadLinearSolve(format!(
+                        "entry ({r}, {col}) outside a {k} x {k} matrix"
+                    )));
+                }
+                if sorted
+                    .windows(2)
+                    .any(|w| (w[0].0, w[0].1) == (w[1].0, w[1].1))
+                {
+                    return Err(CodegenError::BadLinearSolve(
+                        "an entry of the sparse matrix is given twice".into(),
+                    ));
+                }
+                let mut col_ptr = vec![0usize; k + 1];
+                for &(_, col, _) in &sorted {
+                    col_ptr[col + 1] += 1;
+                }
+                for j in 0..k {
+                    col_ptr[j + 1] += col_ptr[j];
+                }
+                let row_idx: Vec<usize> = sorted.iter().map(|&(r, _, _)| r).collect();
+                let exprs: Vec<Id> = sorted.iter().map(|&(_, _, e)| e).collect();
+                let pattern = SparsePattern::new(k, col_ptr, row_idx);
+                self.linear_solve(targets, &exprs, Some(std::sync::Arc::new(pattern)), c)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Compiles the matrix entries and constants of a linear solve and emits it.
+    fn linear_solve(
+        &mut self,
+        targets: &[Id],
+        a: &[Id],
+        sparse: Option<std::sync::Arc<SparsePattern>>,
+        c: &[Id],
+    ) -> Result<(), CodegenError> {
+        let k = targets.len();
+        for &t in targets {
+            self.check_leaf(t)?;
+        }
+        let mut ra = Vec::with_capacity(a.len());
+        for &e in a {
+            ra.push(self.compile(e)?);
+        }
+        let mut rc = Vec::with_capacity(k);
+        for &e in c {
+            rc.push(self.compile(e)?);
+        }
+        let names = targets
+            .iter()
+            .map(|&t| self.describe(t))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let base = self.ops.len() as u32;
+        self.ops.push(Op::LinearSolve(self.ls.len() as u32));
+        for _ in 1..k {
+            self.ops.push(Op::LsPart);
+        }
+        self.ls.push(LsInfo {
+            k,
+            a: ra,
+            sparse,
+            c: rc,
+            lu_off: 0,
+            piv_off: 0,
+            names,
+        });
+        for (i, &t) in targets.iter().enumerate() {
+            self.bind(t, base + i as u32);
         }
         Ok(())
     }
@@ -180,10 +233,16 @@ impl<'a> TapeBuilder<'a> {
         let mut new_ops = Vec::with_capacity(live.iter().filter(|&&l| l).count());
         let mut new_ls = Vec::new();
         let (mut lu_len, mut piv_len, mut max_k) = (0, 0, 0);
-        for (i, &op) in ops.iter().enumerate() {
-            if !live[i] {
-                continue;
+        let order = super::schedule::grouped_order(&ops, &ls, &live);
+        let mut units = Vec::with_capacity(n);
+        for i in order {
+            units.push(i);
+            if let Op::LinearSolve(s) = ops[i] {
+                units.extend(i + 1..i + ls[s as usize].k);
             }
+        }
+        for i in units {
+            let op = ops[i];
             new_index[i] = new_ops.len() as u32;
             let map = |r: u32| new_index[r as usize];
             let op = match op {
@@ -192,13 +251,16 @@ impl<'a> TapeBuilder<'a> {
                     let info = LsInfo {
                         k: old.k,
                         a: old.a.iter().map(|&r| map(r)).collect(),
+                        sparse: old.sparse.clone(),
                         c: old.c.iter().map(|&r| map(r)).collect(),
                         lu_off: lu_len,
                         piv_off: piv_len,
                         names: old.names.clone(),
                     };
-                    lu_len += old.k * old.k;
-                    piv_len += old.k;
+                    if old.sparse.is_none() {
+                        lu_len += old.k * old.k;
+                        piv_len += old.k;
+                    }
                     max_k = max_k.max(old.k);
                     new_ls.push(info);
                     Op::LinearSolve(new_ls.len() as u32 - 1)
@@ -212,7 +274,10 @@ impl<'a> TapeBuilder<'a> {
             .iter()
             .map(|&r| new_index[r as usize])
             .collect();
+        static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         Tape {
+            id: NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            runs: super::tape::runs_of(&new_ops),
             ops: new_ops,
             consts: self.consts,
             ls: new_ls,
@@ -268,8 +333,122 @@ impl<'a> TapeBuilder<'a> {
         self.lookup(id).expect("operand compiled before its parent")
     }
 
-    /// Emits `op` unless an identical instruction exists; returns its register.
+    /// The value of register `r` if it is a constant.
+    #[inline]
+    fn const_value(&self, r: u32) -> Option<f64> {
+        match self.ops[r as usize] {
+            Op::Const(k) => Some(self.consts[k as usize]),
+            _ => None,
+        }
+    }
+
+    /// Folds `op` when its operands make it trivial: every operand constant (evaluated
+    /// now), or a neutral or absorbing constant (`x * 0`, `x + 0`, `x * 1`, ...), or a
+    /// condition known at compile time. Assigned variables that turn out constant (a
+    /// rotation entry that is 0 for a structural axis) thereby vanish from everything
+    /// computed from them. As in the symbolic simplifier, `0 * x` is 0 even for
+    /// non-finite `x`.
+    fn fold(&mut self, op: Op) -> Option<u32> {
+        let c = |r: u32| self.const_value(r);
+        let mut all_const = true;
+        op.for_each_operand(&self.ls, |r| all_const &= c(r).is_some());
+        match op {
+            Op::Const(_) | Op::Input(_) | Op::LinearSolve(_) | Op::LsPart => return None,
+            _ if all_const => {
+                // Evaluate on a local register file holding the operands' values.
+                let mut operands: Vec<u32> = Vec::with_capacity(3);
+                op.for_each_operand(&self.ls, |r| operands.push(r));
+                let local: Vec<f64> = operands.iter().map(|&r| c(r).unwrap_or(f64::NAN)).collect();
+                let local_op =
+                    op.remap(|r| operands.iter().position(|&x| x == r).unwrap_or(0) as u32);
+                let v = super::tape::value(local_op, &self.consts, &[], &local);
+                return Some(self.constant(v));
+            }
+            _ => {}
+        }
+        match op {
+            Op::Add(a, b) => match (c(a), c(b)) {
+                (Some(0.0), _) => Some(b),
+                (_, Some(0.0)) => Some(a),
+                _ => None,
+            },
+            Op::Sub(a, b) => match (c(a), c(b)) {
+                (_, Some(0.0)) => Some(a),
+                (Some(0.0), _) => Some(self.emit(Op::Neg(b))),
+                _ => None,
+            },
+            Op::Mul(a, b) => match (c(a), c(b)) {
+                (Some(0.0), _) | (_, Some(0.0)) => Some(self.constant(0.0)),
+                (Some(1.0), _) => Some(b),
+                (_, Some(1.0)) => Some(a),
+                (Some(-1.0), _) => Some(self.emit(Op::Neg(b))),
+                (_, Some(-1.0)) => Some(self.emit(Op::Neg(a))),
+                (Some(k), _) => {
+                    let k = self.const_slot(k);
+                    Some(self.emit(Op::Scale(k, b)))
+                }
+                (_, Some(k)) => {
+                    let k = self.const_slot(k);
+                    Some(self.emit(Op::Scale(k, a)))
+                }
+                _ => None,
+            },
+            Op::Div(a, b) => match (c(a), c(b)) {
+                (Some(0.0), _) => Some(self.constant(0.0)),
+                (_, Some(1.0)) => Some(a),
+                (_, Some(k)) if k != 0.0 => {
+                    let k = self.const_slot(1.0 / k);
+                    Some(self.emit(Op::Scale(k, a)))
+                }
+                _ => None,
+            },
+            Op::Neg(a) => match self.ops[a as usize] {
+                Op::Neg(x) => Some(x),
+                _ => None,
+            },
+            Op::Scale(k, a) => {
+                let k = self.consts[k as usize];
+                if k == 0.0 {
+                    Some(self.constant(0.0))
+                } else if k == 1.0 {
+                    Some(a)
+                } else if k == -1.0 {
+                    Some(self.emit(Op::Neg(a)))
+                } else {
+                    None
+                }
+            }
+            Op::AddScaled(a, k, b) => {
+                let kv = self.consts[k as usize];
+                match (c(a), c(b)) {
+                    (_, Some(0.0)) => Some(a),
+                    _ if kv == 0.0 => Some(a),
+                    (Some(0.0), _) => Some(self.emit(Op::Scale(k, b))),
+                    _ if kv == 1.0 => Some(self.emit(Op::Add(a, b))),
+                    _ if kv == -1.0 => Some(self.emit(Op::Sub(a, b))),
+                    _ => None,
+                }
+            }
+            Op::PowI(a, e) => match e {
+                0 => Some(self.constant(1.0)),
+                1 => Some(a),
+                _ => None,
+            },
+            Op::Select(cond, a, b) => match c(cond) {
+                Some(v) => Some(if v != 0.0 { a } else { b }),
+                None if a == b => Some(a),
+                None => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// Emits `op` unless an identical instruction exists or it folds; returns its
+    /// register.
     fn emit(&mut self, op: Op) -> u32 {
+        if let Some(r) = self.fold(op) {
+            return r;
+        }
         let op = match op {
             Op::Add(a, b) if b < a => Op::Add(b, a),
             Op::Mul(a, b) if b < a => Op::Mul(b, a),

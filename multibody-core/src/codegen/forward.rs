@@ -3,7 +3,7 @@
 use crate::expr::{Func1, Func2};
 
 use super::EvalError;
-use super::tape::{Op, Tape, Workspace, lu_solve, sign, solve_linear, value};
+use super::tape::{Op, RunKind, Tape, Workspace, lu_solve, sign, solve_linear, value};
 
 /// Derivative of a unary function at `a`, given its value `v = f(a)`.
 #[inline]
@@ -39,6 +39,116 @@ fn combine(t: &mut [f64], ca: f64, ta: &[f64], cb: f64, tb: &[f64]) {
             s += cb * y;
         }
         *t = s;
+    }
+}
+
+/// Tangents of instruction `i` (anything but a linear solve) into `t` (`w` lanes), from
+/// the tangents of earlier registers in `done` (`done[r * w + lane]`) and the values in
+/// `regs`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn op_tangent(
+    op: Op,
+    i: usize,
+    regs: &[f64],
+    consts: &[f64],
+    seeds: &[f64],
+    done: &[f64],
+    t: &mut [f64],
+    w: usize,
+) {
+    let tr = |x: u32| &done[x as usize * w..x as usize * w + w];
+    let r = |x: u32| regs[x as usize];
+    match op {
+        Op::Const(_) => t.fill(0.0),
+        Op::Input(s) => t.copy_from_slice(&seeds[s as usize * w..s as usize * w + w]),
+        Op::Add(a, b) => {
+            for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                *t = x + y;
+            }
+        }
+        Op::Sub(a, b) => {
+            for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                *t = x - y;
+            }
+        }
+        Op::Mul(a, b) => {
+            let (va, vb) = (r(a), r(b));
+            for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                *t = x * vb + va * y;
+            }
+        }
+        Op::Div(a, b) => {
+            let (v, vb) = (regs[i], r(b));
+            for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                *t = (x - v * y) / vb;
+            }
+        }
+        Op::Neg(a) => {
+            for (t, x) in t.iter_mut().zip(tr(a)) {
+                *t = -x;
+            }
+        }
+        Op::Scale(k, a) => {
+            let k = consts[k as usize];
+            for (t, x) in t.iter_mut().zip(tr(a)) {
+                *t = k * x;
+            }
+        }
+        Op::AddScaled(a, k, b) => {
+            let k = consts[k as usize];
+            for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                *t = x + k * y;
+            }
+        }
+        Op::PowI(a, e) => {
+            let d = f64::from(e) * r(a).powi(e - 1);
+            for (t, x) in t.iter_mut().zip(tr(a)) {
+                *t = if *x != 0.0 { d * x } else { 0.0 };
+            }
+        }
+        Op::Pow(a, b) => {
+            let (va, vb, v) = (r(a), r(b), regs[i]);
+            let ca = vb * va.powf(vb - 1.0);
+            let cb = v * va.ln();
+            combine(t, ca, tr(a), cb, tr(b));
+        }
+        Op::F1(f, a) => {
+            let d = d_f1(f, r(a), regs[i]);
+            for (t, x) in t.iter_mut().zip(tr(a)) {
+                *t = if *x != 0.0 { d * x } else { 0.0 };
+            }
+        }
+        Op::F2(f, a, b) => {
+            let (va, vb) = (r(a), r(b));
+            let (ca, cb) = match f {
+                Func2::Atan2 => {
+                    let q = va * va + vb * vb;
+                    (vb / q, -va / q)
+                }
+                Func2::Min => {
+                    if va <= vb || vb.is_nan() {
+                        (1.0, 0.0)
+                    } else {
+                        (0.0, 1.0)
+                    }
+                }
+                Func2::Max => {
+                    if va >= vb || vb.is_nan() {
+                        (1.0, 0.0)
+                    } else {
+                        (0.0, 1.0)
+                    }
+                }
+            };
+            combine(t, ca, tr(a), cb, tr(b));
+        }
+        Op::Cmp(..) => t.fill(0.0),
+        Op::Select(c, a, b) => {
+            let src = if r(c) != 0.0 { a } else { b };
+            t.copy_from_slice(tr(src));
+        }
+        Op::LinearSolve(_) | Op::LsPart => {}
     }
 }
 
@@ -86,138 +196,59 @@ impl Tape {
             lu,
             piv,
             rhs,
+            sparse,
         } = ws;
         let regs = &mut regs[..n];
         let tan = &mut tan[..n * lanes];
-        let consts = &self.consts[..];
         let w = lanes;
-        for (i, &op) in self.ops.iter().enumerate() {
-            // Values.
-            match op {
-                Op::LinearSolve(s) => solve_linear(&self.ls[s as usize], i, regs, lu, piv)?,
-                Op::LsPart => continue,
-                _ => regs[i] = value(op, consts, inputs, regs),
-            }
-            // Tangents.
-            let (done, rest) = tan.split_at_mut(i * w);
-            let t = &mut rest[..w];
-            let tr = |x: u32| &done[x as usize * w..x as usize * w + w];
-            let r = |x: u32| regs[x as usize];
-            match op {
-                Op::Const(_) => t.fill(0.0),
-                Op::Input(s) => t.copy_from_slice(&seeds[s as usize * w..s as usize * w + w]),
-                Op::Add(a, b) => {
-                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
-                        *t = x + y;
+        forward_core(
+            self,
+            inputs,
+            seeds,
+            w,
+            regs,
+            tan,
+            |i, s, regs, done, rest| {
+                // A x + c = 0  =>  A dx = -(dA x + dc).
+                let info = &self.ls[s as usize];
+                solve_linear(info, s as usize, i, regs, lu, piv, sparse)?;
+                let k = info.k;
+                let x = &regs[i..i + k];
+                let rhs = &mut rhs[..k];
+                let t = &mut rest[..k * w];
+                for l in 0..w {
+                    for (row, b) in rhs.iter_mut().enumerate() {
+                        *b = -done[info.c[row] as usize * w + l];
                     }
-                }
-                Op::Sub(a, b) => {
-                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
-                        *t = x - y;
-                    }
-                }
-                Op::Mul(a, b) => {
-                    let (va, vb) = (r(a), r(b));
-                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
-                        *t = x * vb + va * y;
-                    }
-                }
-                Op::Div(a, b) => {
-                    let (v, vb) = (regs[i], r(b));
-                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
-                        *t = (x - v * y) / vb;
-                    }
-                }
-                Op::Neg(a) => {
-                    for (t, x) in t.iter_mut().zip(tr(a)) {
-                        *t = -x;
-                    }
-                }
-                Op::Scale(k, a) => {
-                    let k = consts[k as usize];
-                    for (t, x) in t.iter_mut().zip(tr(a)) {
-                        *t = k * x;
-                    }
-                }
-                Op::AddScaled(a, k, b) => {
-                    let k = consts[k as usize];
-                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
-                        *t = x + k * y;
-                    }
-                }
-                Op::PowI(a, e) => {
-                    let d = f64::from(e) * r(a).powi(e - 1);
-                    for (t, x) in t.iter_mut().zip(tr(a)) {
-                        *t = if *x != 0.0 { d * x } else { 0.0 };
-                    }
-                }
-                Op::Pow(a, b) => {
-                    let (va, vb, v) = (r(a), r(b), regs[i]);
-                    let ca = vb * va.powf(vb - 1.0);
-                    let cb = v * va.ln();
-                    combine(t, ca, tr(a), cb, tr(b));
-                }
-                Op::F1(f, a) => {
-                    let d = d_f1(f, r(a), regs[i]);
-                    for (t, x) in t.iter_mut().zip(tr(a)) {
-                        *t = if *x != 0.0 { d * x } else { 0.0 };
-                    }
-                }
-                Op::F2(f, a, b) => {
-                    let (va, vb) = (r(a), r(b));
-                    let (ca, cb) = match f {
-                        Func2::Atan2 => {
-                            let q = va * va + vb * vb;
-                            (vb / q, -va / q)
-                        }
-                        Func2::Min => {
-                            if va <= vb || vb.is_nan() {
-                                (1.0, 0.0)
-                            } else {
-                                (0.0, 1.0)
+                    match &info.sparse {
+                        Some(pattern) => {
+                            for col in 0..k {
+                                for p in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+                                    rhs[pattern.row_idx[p]] -=
+                                        done[info.a[p] as usize * w + l] * x[col];
+                                }
                             }
+                            sparse.lu[s as usize].solve_in_place(rhs, &mut sparse.scratch);
                         }
-                        Func2::Max => {
-                            if va >= vb || vb.is_nan() {
-                                (1.0, 0.0)
-                            } else {
-                                (0.0, 1.0)
+                        None => {
+                            for (row, b) in rhs.iter_mut().enumerate() {
+                                for (col, &xc) in x.iter().enumerate() {
+                                    *b -= done[info.a[row * k + col] as usize * w + l] * xc;
+                                }
                             }
-                        }
-                    };
-                    combine(t, ca, tr(a), cb, tr(b));
-                }
-                Op::Cmp(..) => t.fill(0.0),
-                Op::Select(c, a, b) => {
-                    let src = if r(c) != 0.0 { a } else { b };
-                    t.copy_from_slice(tr(src));
-                }
-                Op::LinearSolve(s) => {
-                    // A x + c = 0  =>  A dx = -(dA x + dc).
-                    let info = &self.ls[s as usize];
-                    let k = info.k;
-                    let x = &regs[i..i + k];
-                    let m = &lu[info.lu_off..info.lu_off + k * k];
-                    let p = &piv[info.piv_off..info.piv_off + k];
-                    let rhs = &mut rhs[..k];
-                    let t = &mut rest[..k * w];
-                    for l in 0..w {
-                        for (row, b) in rhs.iter_mut().enumerate() {
-                            let mut s = done[info.c[row] as usize * w + l];
-                            for (col, &xc) in x.iter().enumerate() {
-                                s += done[info.a[row * k + col] as usize * w + l] * xc;
-                            }
-                            *b = -s;
-                        }
-                        lu_solve(m, p, rhs);
-                        for (j, &v) in rhs.iter().enumerate() {
-                            t[j * w + l] = v;
+                            let m = &lu[info.lu_off..info.lu_off + k * k];
+                            let p = &piv[info.piv_off..info.piv_off + k];
+                            lu_solve(m, p, rhs);
                         }
                     }
+                    for (j, &v) in rhs.iter().enumerate() {
+                        t[j * w + l] = v;
+                    }
                 }
-                Op::LsPart => {}
-            }
-        }
+                Ok(())
+            },
+            |_, _| {},
+        )?;
         for (o, &r) in self.outputs.iter().enumerate() {
             out[o] = regs[r as usize];
             out_tangents[o * w..o * w + w]
@@ -225,4 +256,126 @@ impl Tape {
         }
         Ok(())
     }
+}
+
+/// The forward sweep shared by [`Tape::forward`] and the extended Jacobian: values and
+/// `w`-lane tangents of every instruction, run by run (a loop per kind of run).
+/// `linear_solve(i, s, regs, done, rest)` computes the values and tangents of linear
+/// solve `s` at register `i` (tangents of earlier registers in `done`, its own from the
+/// start of `rest`); `after(i, t)` may rewrite the tangent of instruction `i` (not
+/// called for linear solves).
+#[inline(always)]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub(crate) fn forward_core(
+    tape: &Tape,
+    inputs: &[f64],
+    seeds: &[f64],
+    w: usize,
+    regs: &mut [f64],
+    tan: &mut [f64],
+    mut linear_solve: impl FnMut(usize, u32, &mut [f64], &[f64], &mut [f64]) -> Result<(), EvalError>,
+    mut after: impl FnMut(usize, &mut [f64]),
+) -> Result<(), EvalError> {
+    let ops = &tape.ops[..];
+    let consts = &tape.consts[..];
+    // `$pat` binds the operands; `$val` computes the value; `$tan(t, regs, tr)` the
+    // tangent lanes from the operands' tangents (`tr(register)`).
+    macro_rules! each {
+        ($run:expr, $pat:pat => $val:expr, |$t:ident, $v:ident, $tr:ident| $body:block) => {
+            for i in $run.start as usize..$run.end as usize {
+                if let $pat = ops[i] {
+                    let value = $val;
+                    regs[i] = value;
+                    let (done, rest) = tan.split_at_mut(i * w);
+                    let $t = &mut rest[..w];
+                    let $v = value;
+                    let $tr = |x: u32| &done[x as usize * w..x as usize * w + w];
+                    $body
+                    after(i, $t);
+                }
+            }
+        };
+    }
+    for run in &tape.runs {
+        match run.kind {
+            RunKind::Const => each!(run, Op::Const(k) => consts[k as usize], |t, _v, _tr| {
+                t.fill(0.0);
+            }),
+            RunKind::Input => each!(run, Op::Input(s) => inputs[s as usize], |t, _v, _tr| {
+                t.copy_from_slice(&seeds[s as usize * w..s as usize * w + w]);
+            }),
+            RunKind::Add => {
+                each!(run, Op::Add(a, b) => regs[a as usize] + regs[b as usize], |t, _v, tr| {
+                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                        *t = x + y;
+                    }
+                })
+            }
+            RunKind::Sub => {
+                each!(run, Op::Sub(a, b) => regs[a as usize] - regs[b as usize], |t, _v, tr| {
+                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                        *t = x - y;
+                    }
+                })
+            }
+            RunKind::Mul => {
+                each!(run, Op::Mul(a, b) => regs[a as usize] * regs[b as usize], |t, _v, tr| {
+                    let (va, vb) = (regs[a as usize], regs[b as usize]);
+                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                        *t = x * vb + va * y;
+                    }
+                })
+            }
+            RunKind::Div => {
+                each!(run, Op::Div(a, b) => regs[a as usize] / regs[b as usize], |t, v, tr| {
+                    let vb = regs[b as usize];
+                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                        *t = (x - v * y) / vb;
+                    }
+                })
+            }
+            RunKind::Neg => each!(run, Op::Neg(a) => -regs[a as usize], |t, _v, tr| {
+                for (t, x) in t.iter_mut().zip(tr(a)) {
+                    *t = -x;
+                }
+            }),
+            RunKind::Scale => {
+                each!(run, Op::Scale(k, a) => consts[k as usize] * regs[a as usize], |t, _v, tr| {
+                    let k = consts[k as usize];
+                    for (t, x) in t.iter_mut().zip(tr(a)) {
+                        *t = k * x;
+                    }
+                })
+            }
+            RunKind::AddScaled => each!(
+                run,
+                Op::AddScaled(a, k, b) => regs[a as usize] + consts[k as usize] * regs[b as usize],
+                |t, _v, tr| {
+                    let k = consts[k as usize];
+                    for ((t, x), y) in t.iter_mut().zip(tr(a)).zip(tr(b)) {
+                        *t = x + k * y;
+                    }
+                }
+            ),
+            RunKind::Other => {
+                for i in run.start as usize..run.end as usize {
+                    match ops[i] {
+                        Op::LsPart => {}
+                        Op::LinearSolve(s) => {
+                            let (done, rest) = tan.split_at_mut(i * w);
+                            linear_solve(i, s, regs, done, rest)?;
+                        }
+                        op => {
+                            regs[i] = value(op, consts, inputs, regs);
+                            let (done, rest) = tan.split_at_mut(i * w);
+                            let t = &mut rest[..w];
+                            op_tangent(op, i, regs, consts, seeds, done, t, w);
+                            after(i, t);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
 }

@@ -16,15 +16,20 @@
 
 mod compile;
 pub mod dae;
+mod extended;
 mod forward;
+mod schedule;
 mod sparsity;
 mod tape;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_extended;
 
 pub use crate::solve::ida::EvalError;
 pub use compile::TapeBuilder;
+pub use extended::{DEFAULT_MAX_FILL, ExtendedJacobian, ExtendedWorkspace};
 pub use sparsity::{DaeJacobian, JacobianWorkspace};
 pub use tape::{Tape, Workspace};
 
@@ -50,6 +55,18 @@ pub enum Stmt {
         targets: Vec<Id>,
         /// Row-major k*k expressions of the matrix `A`.
         a: Vec<Id>,
+        /// The k expressions of the constant vector `c`.
+        c: Vec<Id>,
+    },
+    /// Solves the sparse linear system `A x + c = 0` for the leaves `targets` with the
+    /// refactorizing sparse LU (pivots replayed between calls while they stay large). A
+    /// singular matrix or a non-finite solution is a recoverable [`EvalError`].
+    SparseLinearSolve {
+        /// The k leaves solved for, in the order of the columns of `A`.
+        targets: Vec<Id>,
+        /// The structurally non-zero entries of `A`: `(row, column, expression)`, each
+        /// position at most once.
+        entries: Vec<(usize, usize, Id)>,
         /// The k expressions of the constant vector `c`.
         c: Vec<Id>,
     },

@@ -5,7 +5,7 @@ use super::EvalError;
 use super::tape::{Op, Tape, Workspace};
 
 /// Merges two sorted, duplicate-free vectors.
-fn merge(a: &[u32], b: &[u32]) -> Vec<u32> {
+pub(crate) fn merge(a: &[u32], b: &[u32]) -> Vec<u32> {
     if a.is_empty() {
         return b.to_vec();
     }
@@ -93,7 +93,92 @@ impl Tape {
 }
 
 /// Directions evaluated per forward pass of [`DaeJacobian::eval`].
-const MAX_LANES: usize = 16;
+pub(crate) const MAX_LANES: usize = 16;
+
+/// A column colouring: columns of one colour share no row.
+#[derive(Clone, Debug)]
+pub(crate) struct Coloring {
+    /// Colour of each column (`usize::MAX` for an empty column).
+    pub(crate) colors: Vec<usize>,
+    pub(crate) n_colors: usize,
+    /// Columns of colour c are `by_color[color_ptr[c]..color_ptr[c + 1]]`.
+    pub(crate) color_ptr: Vec<usize>,
+    pub(crate) by_color: Vec<usize>,
+}
+
+/// Greedy distance-2 colouring of the columns of a CSC pattern (`rows[r]` lists the
+/// columns of row r): columns sharing a row get different colours.
+pub(crate) fn color_columns(col_ptr: &[usize], row_idx: &[usize], rows: &[Vec<usize>]) -> Coloring {
+    let n_cols = col_ptr.len() - 1;
+    let mut colors = vec![usize::MAX; n_cols];
+    let mut forbidden: Vec<usize> = Vec::new(); // forbidden[c] == j: colour c taken for column j
+    let mut n_colors = 0;
+    for j in 0..n_cols {
+        if col_ptr[j] == col_ptr[j + 1] {
+            continue; // empty column: no colour needed
+        }
+        for &r in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+            for &k in &rows[r] {
+                let c = colors[k];
+                if c != usize::MAX {
+                    forbidden[c] = j;
+                }
+            }
+        }
+        let c = (0..n_colors)
+            .find(|&c| forbidden[c] != j)
+            .unwrap_or(n_colors);
+        if c == n_colors {
+            n_colors += 1;
+            forbidden.push(usize::MAX);
+        }
+        colors[j] = c;
+    }
+    let mut color_ptr = vec![0usize; n_colors + 1];
+    for &c in colors.iter().filter(|&&c| c != usize::MAX) {
+        color_ptr[c + 1] += 1;
+    }
+    for c in 0..n_colors {
+        color_ptr[c + 1] += color_ptr[c];
+    }
+    let mut fill = color_ptr.clone();
+    let mut by_color = vec![0usize; color_ptr[n_colors]];
+    for (j, &c) in colors.iter().enumerate() {
+        if c != usize::MAX {
+            by_color[fill[c]] = j;
+            fill[c] += 1;
+        }
+    }
+    Coloring {
+        colors,
+        n_colors,
+        color_ptr,
+        by_color,
+    }
+}
+
+/// Transposes row lists (`rows[r]` sorted column indices) into a CSC pattern with
+/// `n_cols` columns and sorted row indices.
+pub(crate) fn rows_to_csc(rows: &[Vec<usize>], n_cols: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut col_ptr = vec![0usize; n_cols + 1];
+    for cols in rows {
+        for &c in cols {
+            col_ptr[c + 1] += 1;
+        }
+    }
+    for j in 0..n_cols {
+        col_ptr[j + 1] += col_ptr[j];
+    }
+    let mut next = col_ptr.clone();
+    let mut row_idx = vec![0usize; col_ptr[n_cols]];
+    for (r, cols) in rows.iter().enumerate() {
+        for &c in cols {
+            row_idx[next[c]] = r;
+            next[c] += 1;
+        }
+    }
+    (col_ptr, row_idx)
+}
 
 /// Sparse Jacobian `J = dF/du + cj dF/du'` of a DAE residual tape whose inputs hold
 /// `u` (n values from `u_offset`) and `u'` (n values from `yp_offset`) among others;
@@ -165,64 +250,13 @@ impl DaeJacobian {
             cols.dedup();
             rows.push(cols);
         }
-        // Transpose into CSC (rows visited in order, so row indices come out sorted).
-        let mut col_ptr = vec![0usize; n + 1];
-        for cols in &rows {
-            for &c in cols {
-                col_ptr[c + 1] += 1;
-            }
-        }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
-        let mut next = col_ptr.clone();
-        let mut row_idx = vec![0usize; col_ptr[n]];
-        for (r, cols) in rows.iter().enumerate() {
-            for &c in cols {
-                row_idx[next[c]] = r;
-                next[c] += 1;
-            }
-        }
-        // Greedy distance-2 colouring: columns sharing a row get different colours.
-        let mut colors = vec![usize::MAX; n];
-        let mut forbidden: Vec<usize> = Vec::new(); // forbidden[c] == j: colour c taken for column j
-        let mut n_colors = 0;
-        for j in 0..n {
-            if col_ptr[j] == col_ptr[j + 1] {
-                continue; // empty column: no colour needed
-            }
-            for &r in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
-                for &k in &rows[r] {
-                    let c = colors[k];
-                    if c != usize::MAX {
-                        forbidden[c] = j;
-                    }
-                }
-            }
-            let c = (0..n_colors)
-                .find(|&c| forbidden[c] != j)
-                .unwrap_or(n_colors);
-            if c == n_colors {
-                n_colors += 1;
-                forbidden.push(usize::MAX);
-            }
-            colors[j] = c;
-        }
-        let mut color_ptr = vec![0usize; n_colors + 1];
-        for &c in colors.iter().filter(|&&c| c != usize::MAX) {
-            color_ptr[c + 1] += 1;
-        }
-        for c in 0..n_colors {
-            color_ptr[c + 1] += color_ptr[c];
-        }
-        let mut fill = color_ptr.clone();
-        let mut by_color = vec![0usize; color_ptr[n_colors]];
-        for (j, &c) in colors.iter().enumerate() {
-            if c != usize::MAX {
-                by_color[fill[c]] = j;
-                fill[c] += 1;
-            }
-        }
+        let (col_ptr, row_idx) = rows_to_csc(&rows, n);
+        let Coloring {
+            colors,
+            n_colors,
+            color_ptr,
+            by_color,
+        } = color_columns(&col_ptr, &row_idx, &rows);
         DaeJacobian {
             n,
             col_ptr,

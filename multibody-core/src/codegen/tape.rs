@@ -1,6 +1,7 @@
 //! The instruction set, the tape and its value evaluation.
 
 use crate::expr::{Cmp, Func1, Func2};
+use crate::sparse_lu::{LuError, SparseLu};
 
 use super::EvalError;
 
@@ -96,13 +97,58 @@ impl Op {
     }
 }
 
-/// A dense linear system `A x + c = 0` solved inside the tape.
+/// The pattern of a sparse `A` (compressed columns), with its rows for row-wise access.
+#[derive(Clone, Debug)]
+pub(crate) struct SparsePattern {
+    pub(crate) col_ptr: Vec<usize>,
+    pub(crate) row_idx: Vec<usize>,
+    /// Row j holds the entries `row_entries[row_ptr[j]..row_ptr[j + 1]]` (indices into
+    /// the CSC order).
+    pub(crate) row_ptr: Vec<usize>,
+    pub(crate) row_entries: Vec<usize>,
+}
+
+impl SparsePattern {
+    /// The pattern of the `(row, col)` entries (CSC order as given, no duplicates).
+    pub(crate) fn new(k: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> SparsePattern {
+        let mut row_ptr = vec![0usize; k + 1];
+        for &r in &row_idx {
+            row_ptr[r + 1] += 1;
+        }
+        for j in 0..k {
+            row_ptr[j + 1] += row_ptr[j];
+        }
+        let mut fill = row_ptr.clone();
+        let mut row_entries = vec![0usize; row_idx.len()];
+        for (p, &r) in row_idx.iter().enumerate() {
+            row_entries[fill[r]] = p;
+            fill[r] += 1;
+        }
+        SparsePattern {
+            col_ptr,
+            row_idx,
+            row_ptr,
+            row_entries,
+        }
+    }
+
+    /// The column of entry `p` (CSC index).
+    pub(crate) fn col_of(&self, p: usize) -> usize {
+        self.col_ptr.partition_point(|&q| q <= p) - 1
+    }
+}
+
+/// A linear system `A x + c = 0` solved inside the tape: dense (LU with partial
+/// pivoting) or sparse (the refactorizing sparse LU).
 #[derive(Clone, Debug)]
 pub(crate) struct LsInfo {
     /// Dimension.
     pub(crate) k: usize,
-    /// Registers of `A`, row-major.
+    /// Registers of `A`: row-major k*k when dense, one per entry in CSC order when
+    /// sparse.
     pub(crate) a: Vec<u32>,
+    /// The pattern of a sparse `A`; `None` for a dense one.
+    pub(crate) sparse: Option<std::sync::Arc<SparsePattern>>,
     /// Registers of `c`.
     pub(crate) c: Vec<u32>,
     /// Offset of this system's LU factors in the workspace (k*k entries).
@@ -113,11 +159,74 @@ pub(crate) struct LsInfo {
     pub(crate) names: String,
 }
 
+/// What a [`Run`] of instructions computes: the common arithmetic kinds get loops of
+/// their own, everything else goes through the general dispatch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RunKind {
+    Const,
+    Input,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Neg,
+    Scale,
+    AddScaled,
+    Other,
+}
+
+impl RunKind {
+    fn of(op: &Op) -> RunKind {
+        match op {
+            Op::Const(_) => RunKind::Const,
+            Op::Input(_) => RunKind::Input,
+            Op::Add(..) => RunKind::Add,
+            Op::Sub(..) => RunKind::Sub,
+            Op::Mul(..) => RunKind::Mul,
+            Op::Div(..) => RunKind::Div,
+            Op::Neg(_) => RunKind::Neg,
+            Op::Scale(..) => RunKind::Scale,
+            Op::AddScaled(..) => RunKind::AddScaled,
+            _ => RunKind::Other,
+        }
+    }
+}
+
+/// A maximal range `start..end` of consecutive instructions of one [`RunKind`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Run {
+    pub(crate) kind: RunKind,
+    pub(crate) start: u32,
+    pub(crate) end: u32,
+}
+
+/// The runs of `ops`, in order.
+pub(crate) fn runs_of(ops: &[Op]) -> Vec<Run> {
+    let mut runs: Vec<Run> = Vec::new();
+    for (i, op) in ops.iter().enumerate() {
+        let kind = RunKind::of(op);
+        match runs.last_mut() {
+            Some(r) if r.kind == kind => r.end = i as u32 + 1,
+            _ => runs.push(Run {
+                kind,
+                start: i as u32,
+                end: i as u32 + 1,
+            }),
+        }
+    }
+    runs
+}
+
 /// A compiled straight-line program: inputs in, outputs out. Independent of the arena
 /// it was compiled from; `Send + Sync` and cheap to share.
 #[derive(Clone, Debug)]
 pub struct Tape {
+    /// A number unique to this tape's structure (workspaces keep sparse factorizations
+    /// per tape).
+    pub(crate) id: u64,
     pub(crate) ops: Vec<Op>,
+    /// `ops` as runs of one kind, evaluated by a loop each.
+    pub(crate) runs: Vec<Run>,
     pub(crate) consts: Vec<f64>,
     pub(crate) ls: Vec<LsInfo>,
     pub(crate) outputs: Vec<u32>,
@@ -137,6 +246,20 @@ pub struct Workspace {
     pub(crate) lu: Vec<f64>,
     pub(crate) piv: Vec<usize>,
     pub(crate) rhs: Vec<f64>,
+    /// Factorizations of the sparse linear solves, by linear-solve index, for the tape
+    /// `sparse_for`.
+    pub(crate) sparse: SparseSolves,
+}
+
+/// The sparse LU factorizations of a tape's sparse linear solves (kept between calls so
+/// that pivots are replayed).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SparseSolves {
+    /// Id of the tape these belong to (0: none).
+    pub(crate) tape: u64,
+    pub(crate) lu: Vec<SparseLu>,
+    pub(crate) values: Vec<f64>,
+    pub(crate) scratch: Vec<f64>,
 }
 
 impl Workspace {
@@ -157,6 +280,20 @@ impl Workspace {
         }
         if self.rhs.len() < tape.max_k {
             self.rhs.resize(tape.max_k, 0.0);
+        }
+        if self.sparse.tape != tape.id {
+            self.sparse.tape = tape.id;
+            self.sparse.lu = tape
+                .ls
+                .iter()
+                .map(|info| {
+                    let mut lu = SparseLu::default();
+                    if let Some(p) = &info.sparse {
+                        lu.reset(info.k, &p.col_ptr, &p.row_idx);
+                    }
+                    lu
+                })
+                .collect();
         }
     }
 }
@@ -211,16 +348,43 @@ pub(crate) fn value(op: Op, consts: &[f64], inputs: &[f64], regs: &[f64]) -> f64
 /// `regs[at .. at + k]`. The LU factors and pivots stay in `lu` / `piv` for tangents.
 pub(crate) fn solve_linear(
     info: &LsInfo,
+    s: usize,
     at: usize,
     regs: &mut [f64],
     lu: &mut [f64],
     piv: &mut [usize],
+    sparse: &mut SparseSolves,
 ) -> Result<(), EvalError> {
     let k = info.k;
     let err = |what: &str| EvalError {
         message: format!("linear system for [{}] {}", info.names, what),
         recoverable: true,
     };
+    if let Some(pattern) = &info.sparse {
+        let SparseSolves {
+            lu: lus,
+            values,
+            scratch,
+            ..
+        } = sparse;
+        values.clear();
+        values.extend(info.a.iter().map(|&r| regs[r as usize]));
+        if let Err(LuError::Singular(m)) =
+            lus[s].factorize(&pattern.col_ptr, &pattern.row_idx, values)
+        {
+            return Err(err(&format!("is singular ({m})")));
+        }
+        let (before, after) = regs.split_at_mut(at);
+        let x = &mut after[..k];
+        for (xi, &ci) in x.iter_mut().zip(&info.c) {
+            *xi = -before[ci as usize];
+        }
+        lus[s].solve_in_place(x, scratch);
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(err("has a non-finite solution"));
+        }
+        return Ok(());
+    }
     if k == 1 {
         let a = regs[info.a[0] as usize];
         let c = regs[info.c[0] as usize];
@@ -328,6 +492,41 @@ impl Tape {
         self.ops.len()
     }
 
+    /// Number of instructions of each kind (`"add"`, `"sin"`, ...), sorted by name: a
+    /// profile of what evaluating the tape costs.
+    pub fn op_counts(&self) -> Vec<(String, usize)> {
+        let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+        for op in &self.ops {
+            let name = match op {
+                Op::Const(_) => "const".to_string(),
+                Op::Input(_) => "input".to_string(),
+                Op::Add(..) => "add".to_string(),
+                Op::Sub(..) => "sub".to_string(),
+                Op::Mul(..) => "mul".to_string(),
+                Op::Div(..) => "div".to_string(),
+                Op::Neg(_) => "neg".to_string(),
+                Op::Scale(..) => "scale".to_string(),
+                Op::AddScaled(..) => "add_scaled".to_string(),
+                Op::PowI(..) => "powi".to_string(),
+                Op::Pow(..) => "pow".to_string(),
+                Op::F1(f, _) => format!("{f:?}").to_lowercase(),
+                Op::F2(f, ..) => format!("{f:?}").to_lowercase(),
+                Op::Cmp(..) => "cmp".to_string(),
+                Op::Select(..) => "select".to_string(),
+                Op::LinearSolve(_) => "linear_solve".to_string(),
+                Op::LsPart => "linear_solve_part".to_string(),
+            };
+            *counts.entry(name).or_default() += 1;
+        }
+        counts.into_iter().collect()
+    }
+
+    /// Number of runs: maximal sequences of instructions that evaluation dispatches once
+    /// (see the instruction scheduling in `schedule.rs`).
+    pub fn runs(&self) -> usize {
+        self.runs.len()
+    }
+
     /// Whether the tape has no instruction.
     pub fn is_empty(&self) -> bool {
         self.ops.is_empty()
@@ -365,14 +564,58 @@ impl Tape {
             "Tape::eval: output buffer too short"
         );
         ws.fit(self, 0);
-        let Workspace { regs, lu, piv, .. } = ws;
+        let Workspace {
+            regs,
+            lu,
+            piv,
+            sparse,
+            ..
+        } = ws;
         let regs = &mut regs[..self.ops.len()];
         let consts = &self.consts[..];
-        for (i, &op) in self.ops.iter().enumerate() {
-            match op {
-                Op::LinearSolve(s) => solve_linear(&self.ls[s as usize], i, regs, lu, piv)?,
-                Op::LsPart => {}
-                _ => regs[i] = value(op, consts, inputs, regs),
+        let ops = &self.ops[..];
+        macro_rules! each {
+            ($run:expr, $pat:pat => $value:expr) => {
+                for i in $run.start as usize..$run.end as usize {
+                    if let $pat = ops[i] {
+                        regs[i] = $value;
+                    }
+                }
+            };
+        }
+        for run in &self.runs {
+            match run.kind {
+                RunKind::Const => each!(run, Op::Const(k) => consts[k as usize]),
+                RunKind::Input => each!(run, Op::Input(s) => inputs[s as usize]),
+                RunKind::Add => each!(run, Op::Add(a, b) => regs[a as usize] + regs[b as usize]),
+                RunKind::Sub => each!(run, Op::Sub(a, b) => regs[a as usize] - regs[b as usize]),
+                RunKind::Mul => each!(run, Op::Mul(a, b) => regs[a as usize] * regs[b as usize]),
+                RunKind::Div => each!(run, Op::Div(a, b) => regs[a as usize] / regs[b as usize]),
+                RunKind::Neg => each!(run, Op::Neg(a) => -regs[a as usize]),
+                RunKind::Scale => {
+                    each!(run, Op::Scale(k, a) => consts[k as usize] * regs[a as usize])
+                }
+                RunKind::AddScaled => each!(
+                    run,
+                    Op::AddScaled(a, k, b) => regs[a as usize] + consts[k as usize] * regs[b as usize]
+                ),
+                RunKind::Other => {
+                    for i in run.start as usize..run.end as usize {
+                        match ops[i] {
+                            Op::LinearSolve(s) => solve_linear(
+                                &self.ls[s as usize],
+                                s as usize,
+                                i,
+                                regs,
+                                lu,
+                                piv,
+                                sparse,
+                            )?,
+                            Op::LsPart => {}
+                            op => regs[i] = value(op, consts, inputs, regs),
+                        }
+                    }
+                }
             }
         }
         for (o, &r) in out.iter_mut().zip(&self.outputs) {

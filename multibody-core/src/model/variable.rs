@@ -154,6 +154,11 @@ pub struct Parameter {
     pub description: String,
     /// Unit (default: empty).
     pub unit: String,
+    /// `true` folds the value into the equations at `structural_simplify` (MSL
+    /// `Evaluate=true`): zero offsets and switches then vanish from the compiled code,
+    /// and the parameter can no longer be changed without simplifying again
+    /// (default: false).
+    pub evaluate: bool,
     /// The interned symbol of `name`, recorded when declared in a system.
     pub(crate) symbol: Option<u32>,
 }
@@ -167,8 +172,16 @@ impl Parameter {
             fixed: true,
             description: String::new(),
             unit: String::new(),
+            evaluate: false,
             symbol: None,
         }
+    }
+
+    /// Sets whether the value is folded in at `structural_simplify` (see
+    /// [`Parameter::evaluate`](struct@Parameter)).
+    pub fn evaluate(mut self, evaluate: bool) -> Self {
+        self.evaluate = evaluate;
+        self
     }
 
     /// Sets whether the parameter is fixed (false: computed at initialization).

@@ -9,6 +9,7 @@
 mod alias;
 pub mod causalize;
 mod error;
+mod evaluate;
 pub(crate) mod reduce;
 mod system;
 
@@ -37,6 +38,12 @@ pub struct SimplifyOptions {
     /// Where linear algebraic blocks are solved (default: [`LinearBlockLimits::default`],
     /// blocks up to 400 equations with at most 24 tearing variables inside).
     pub linear_blocks: LinearBlockLimits,
+    /// Folds the value of every tunable parameter into the equations, as if all were
+    /// declared `evaluate = true` (Dymola's "Evaluate parameters to reduce models"):
+    /// smaller, faster code, but changing a parameter then needs a new
+    /// `structural_simplify` (default: false; parameters marked `evaluate` are folded
+    /// either way).
+    pub evaluate_parameters: bool,
 }
 
 /// Simplifies a model with default options: see [`structural_simplify_with`].
@@ -54,6 +61,8 @@ pub fn structural_simplify_with(
     let t0 = Instant::now();
     let mut flat = flatten(model)?;
     check_balance(&flat)?;
+    let evaluated_parameters =
+        evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
     let flatten_s = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
     let name = flat.name.clone();
@@ -291,6 +300,7 @@ pub fn structural_simplify_with(
         name,
         variables: flat.variables.clone(),
         parameters: flat.parameters.clone(),
+        evaluated_parameters,
         parameter_values: flat.parameter_values.clone(),
         starts,
         replaced: aliases.replaced.clone(),

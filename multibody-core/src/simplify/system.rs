@@ -66,6 +66,8 @@ pub struct Statistics {
     pub assignments: usize,
     /// Linear blocks solved inside: (size, tearing variables).
     pub linear_inline: Vec<(usize, usize)>,
+    /// Linear blocks solved inside by a sparse LU: sizes.
+    pub linear_sparse: Vec<usize>,
     /// Linear blocks left to the solver: sizes.
     pub linear_solver: Vec<usize>,
     /// Nonlinear blocks: (size, tearing variables).
@@ -81,6 +83,7 @@ impl Statistics {
                 BlockKind::Explicit => {}
                 BlockKind::LinearInline => self.linear_inline.push((b.size, b.torn)),
                 BlockKind::LinearSolver => self.linear_solver.push(b.size),
+                BlockKind::LinearSparse => self.linear_sparse.push(b.size),
                 BlockKind::Nonlinear => self.nonlinear.push((b.size, b.torn)),
             }
         }
@@ -131,6 +134,12 @@ impl fmt::Display for Statistics {
             sizes(&self.linear_inline, false),
             sizes(&self.linear_inline, true)
         )?;
+        let sparse: Vec<(usize, usize)> = self.linear_sparse.iter().map(|&s| (s, s)).collect();
+        writeln!(
+            f,
+            "  linear systems solved inside by sparse LU: sizes {}",
+            sizes(&sparse, false)
+        )?;
         let solver: Vec<(usize, usize)> = self.linear_solver.iter().map(|&s| (s, s)).collect();
         writeln!(
             f,
@@ -163,6 +172,8 @@ pub struct SimplifiedSystem {
     pub(crate) arena: Arena,
     pub(crate) variables: Vec<Variable>,
     pub(crate) parameters: Vec<Parameter>,
+    /// Per parameter: whether its value was folded in at compile time.
+    pub(crate) evaluated_parameters: Vec<bool>,
     /// Parameter bindings (expressions of other parameters) per parameter.
     pub(crate) parameter_values: Vec<Option<Id>>,
     /// Start values per flat variable (expressions of parameters).
@@ -189,6 +200,12 @@ pub struct SimplifiedSystem {
 }
 
 impl SimplifiedSystem {
+    /// The compiled residual, Jacobian and observed functions (for diagnostics and
+    /// benchmarks: tape lengths, Jacobian colours and non-zeros).
+    pub fn compiled(&self) -> &CompiledDae {
+        &self.compiled
+    }
+
     /// The model's name.
     pub fn name(&self) -> &str {
         &self.name
@@ -253,7 +270,8 @@ impl SimplifiedSystem {
                 } if *equation != usize::MAX => {
                     out.push((self.leaf_name(*target), self.arena.display(*expr, &names)));
                 }
-                super::causalize::Step::LinearSolve { targets, .. } => {
+                super::causalize::Step::LinearSolve { targets, .. }
+                | super::causalize::Step::SparseLinearSolve { targets, .. } => {
                     for &t in targets {
                         if self.slot_of.contains_key(&t) {
                             out.push((self.leaf_name(t), "linear system".into()));
@@ -279,6 +297,19 @@ impl SimplifiedSystem {
     /// Names of the tunable parameters.
     pub fn parameters(&self) -> Vec<String> {
         self.parameters.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// Names of the parameters whose values were folded into the equations at compile
+    /// time (marked `evaluate`, or all with
+    /// [`SimplifyOptions::evaluate_parameters`](super::SimplifyOptions)); a problem
+    /// cannot change them.
+    pub fn evaluated_parameters(&self) -> Vec<String> {
+        self.parameters
+            .iter()
+            .zip(&self.evaluated_parameters)
+            .filter(|(_, e)| **e)
+            .map(|(p, _)| p.name.clone())
+            .collect()
     }
 
     /// Names of every variable that a solution can return: the model's variables and

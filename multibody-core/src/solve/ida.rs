@@ -40,8 +40,17 @@ pub trait DaeFunctions {
     /// Evaluates the residual `out = F(t, y, y')`.
     fn residual(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64])
     -> Result<(), EvalError>;
-    /// CSC sparsity pattern of J: (col_ptr of len n+1, row_idx sorted within each column). None = no analytic Jacobian (only allowed with LinearSolver::DenseDifferenceQuotient).
+    /// CSC sparsity pattern of J: (col_ptr of len `jacobian_dimension() + 1`, row_idx sorted within each column). None = no analytic Jacobian (only allowed with LinearSolver::DenseDifferenceQuotient).
     fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)>;
+    /// Size of the matrix described by [`jacobian_pattern`](Self::jacobian_pattern):
+    /// `len()` (the default) for J itself, more for an *extended* Jacobian (J bordered by
+    /// intermediate quantities whose elimination gives J, see
+    /// [`ExtendedJacobian`](crate::codegen::ExtendedJacobian)). An extended Jacobian is
+    /// solved by the sparse LU only, with right-hand sides padded by zeros; only the first
+    /// `len()` entries of its solution are used.
+    fn jacobian_dimension(&self) -> usize {
+        self.len()
+    }
     /// Values of J in the CSC order of the pattern.
     fn jacobian(
         &mut self,
@@ -60,7 +69,7 @@ pub enum LinearSolver {
     Dense,
     /// SUNDIALS dense with IDA's difference-quotient Jacobian (no jacobian() calls)
     DenseDifferenceQuotient,
-    /// SUNSparseMatrix (CSC) + faer sparse LU, symbolic analysis reused while the pattern is unchanged
+    /// SUNSparseMatrix (CSC) + the sparse LU of this crate (COLAMD order from faer, pivots replayed while the pattern is unchanged and they stay large)
     SparseLu,
 }
 
@@ -170,6 +179,8 @@ enum Origin {
 struct CallbackData<'a> {
     f: &'a mut dyn DaeFunctions,
     n: usize,
+    /// Size of the Jacobian matrix (`n`, or more for an extended Jacobian).
+    dim: usize,
     solver: LinearSolver,
     /// Validated pattern (usize, for scattering into the dense matrix).
     col_ptr: Vec<usize>,
@@ -576,7 +587,7 @@ unsafe extern "C" fn jacobian_cb(
                         return -1;
                     }
                     // IDA zeroes the matrix, including its pattern, before every call.
-                    ptr::copy_nonoverlapping(d.col_ptr_i.as_ptr(), ptrs, n + 1);
+                    ptr::copy_nonoverlapping(d.col_ptr_i.as_ptr(), ptrs, d.dim + 1);
                     ptr::copy_nonoverlapping(d.row_idx_i.as_ptr(), rows, nnz);
                     let values = std::slice::from_raw_parts_mut(data, nnz);
                     match d.f.jacobian(t, y, ypv, cj, values) {
@@ -784,12 +795,21 @@ pub fn integrate(
 
     // Jacobian pattern.
     let pattern = f.jacobian_pattern();
+    let dim = f.jacobian_dimension();
+    if dim < n || (dim > n && settings.linear_solver != LinearSolver::SparseLu) {
+        return Err(invalid(
+            t0,
+            format!(
+                "jacobian_dimension() is {dim} for {n} unknowns; an extended Jacobian needs LinearSolver::SparseLu"
+            ),
+        ));
+    }
     let (col_ptr, row_idx) = match (pattern, settings.linear_solver) {
         (Some((c, r)), _) => {
-            if !linsol::valid_csc(n, &c, &r) {
+            if !linsol::valid_csc(dim, &c, &r) {
                 return Err(invalid(
                     t0,
-                    "jacobian_pattern is not a valid CSC pattern (col_ptr of length n + 1 from 0 to nnz, rows < n strictly increasing per column)",
+                    "jacobian_pattern is not a valid CSC pattern (col_ptr of length jacobian_dimension() + 1 from 0 to nnz, rows < jacobian_dimension() strictly increasing per column)",
                 ));
             }
             (c, r)
@@ -806,6 +826,7 @@ pub fn integrate(
     };
     let nnz = row_idx.len();
     let n_i = sys::sunindextype::try_from(n).map_err(|_| invalid(t0, "system too large"))?;
+    let dim_i = sys::sunindextype::try_from(dim).map_err(|_| invalid(t0, "system too large"))?;
     let nnz_i =
         sys::sunindextype::try_from(nnz.max(1)).map_err(|_| invalid(t0, "Jacobian too large"))?;
     let max_steps = c_long::try_from(settings.max_steps).unwrap_or(c_long::MAX);
@@ -813,6 +834,7 @@ pub fn integrate(
     let data = CallbackData {
         f,
         n,
+        dim,
         solver: settings.linear_solver,
         col_ptr_i: col_ptr.iter().map(|&v| v as sys::sunindextype).collect(),
         row_idx_i: row_idx.iter().map(|&v| v as sys::sunindextype).collect(),
@@ -918,11 +940,11 @@ pub fn integrate(
                 }
             }
             LinearSolver::SparseLu => {
-                g.mat = sys::SUNSparseMatrix(n_i, n_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
+                g.mat = sys::SUNSparseMatrix(dim_i, dim_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
                 if g.mat.is_null() {
                     return Err(g.setup_failed(t0, "SUNSparseMatrix failed".into()));
                 }
-                g.ls = linsol::new_faer_linear_solver(g.ctx);
+                g.ls = linsol::new_sparse_lu_solver(g.ctx);
                 if g.ls.is_null() {
                     return Err(g.setup_failed(t0, "creating the faer linear solver failed".into()));
                 }

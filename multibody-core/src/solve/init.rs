@@ -53,6 +53,7 @@ pub(crate) struct InitResult {
 }
 
 /// Finds consistent initial values.
+#[allow(clippy::result_large_err)] // built once per problem, reported to the user
 pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
     let sys = input.sys;
     let model = sys.name.clone();

@@ -1,19 +1,19 @@
-//! A faer sparse LU factorization wrapped as a SUNDIALS `SUNLinearSolver`.
+//! A sparse LU factorization ([`SparseLu`]: COLAMD order from faer, pivots replayed
+//! across refactorizations) wrapped as a SUNDIALS `SUNLinearSolver`.
 //!
-//! The numerical part ([`FaerLu`]) is safe Rust. The FFI glue at the bottom
+//! The numerical part ([`IterationLu`]) is safe Rust. The FFI glue at the bottom
 //! builds a custom direct linear solver with `SUNLinSolNewEmpty` whose
 //! `setup` factorizes the CSC `SUNSparseMatrix` that IDA's Jacobian callback
-//! filled, and whose `solve` applies the factorization. The symbolic analysis
-//! is computed once and reused as long as the sparsity pattern is unchanged.
+//! filled, and whose `solve` applies the factorization. The column order and
+//! pivot sequence are computed once and reused as long as the sparsity pattern
+//! is unchanged and the pivots stay large enough.
 
 use std::ffi::{c_int, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use faer::MatMut;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use sundials_sys as sys;
+
+use crate::sparse_lu::{LuError, SparseLu};
 
 /// Return code for a recoverable failure (singular or non-finite matrix).
 /// Any positive value makes IDA retry with a smaller step.
@@ -33,20 +33,25 @@ pub(crate) enum LuFailure {
 /// Sparse LU state: the pattern of the last factorized matrix, its symbolic
 /// analysis and the numeric factorization.
 #[derive(Default)]
-pub(crate) struct FaerLu {
+pub(crate) struct IterationLu {
     n: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
-    symbolic: Option<SymbolicLu<usize>>,
-    lu: Option<Lu<usize, f64>>,
-    probe: Vec<f64>,
+    /// Whether `lu` was set up for the stored pattern.
+    analysed: bool,
+    lu: SparseLu,
+    /// Whether `lu` holds a valid factorization.
+    factored: bool,
+    scratch: Vec<f64>,
+    /// Right-hand side padded to the matrix size (extended Jacobians).
+    padded: Vec<f64>,
     /// Number of symbolic analyses performed (for tests and logging).
     pub(crate) symbolic_analyses: usize,
     /// Message of the last failure, if any.
     pub(crate) last_failure: Option<String>,
 }
 
-impl FaerLu {
+impl IterationLu {
     /// Factorizes the `n x n` CSC matrix given by SUNDIALS' (signed) index
     /// arrays and values. Reuses the symbolic analysis if the pattern equals
     /// the previous one.
@@ -57,7 +62,7 @@ impl FaerLu {
         row_idx: &[i64],
         values: &[f64],
     ) -> Result<(), LuFailure> {
-        self.lu = None;
+        self.factored = false;
         if col_ptr.len() != n + 1 || row_idx.len() != values.len() {
             return Err(LuFailure::Fatal(format!(
                 "sparse matrix arrays have inconsistent lengths (n = {n}, col_ptr {}, row_idx {}, values {})",
@@ -66,12 +71,7 @@ impl FaerLu {
                 values.len()
             )));
         }
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-            return Err(LuFailure::Recoverable(format!(
-                "iteration matrix entry {k} is not finite"
-            )));
-        }
-        let same_pattern = self.symbolic.is_some()
+        let same_pattern = self.analysed
             && self.n == n
             && self.col_ptr.len() == col_ptr.len()
             && self.row_idx.len() == row_idx.len()
@@ -86,7 +86,7 @@ impl FaerLu {
                 .zip(row_idx)
                 .all(|(&a, &b)| a as i64 == b);
         if !same_pattern {
-            self.symbolic = None;
+            self.analysed = false;
             self.n = n;
             self.col_ptr.clear();
             self.row_idx.clear();
@@ -110,54 +110,40 @@ impl FaerLu {
                     "sparse pattern is not a valid CSC pattern with sorted rows".into(),
                 ));
             }
-            let sym =
-                SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
-            match SymbolicLu::try_new(sym) {
-                Ok(s) => {
-                    self.symbolic = Some(s);
-                    self.symbolic_analyses += 1;
+            self.lu.reset(n, &self.col_ptr, &self.row_idx);
+            self.analysed = true;
+            self.symbolic_analyses += 1;
+            log::debug!(
+                "sparse LU: column order #{} (n = {n}, nnz = {})",
+                self.symbolic_analyses,
+                self.row_idx.len()
+            );
+        }
+        match self.lu.factorize(&self.col_ptr, &self.row_idx, values) {
+            Ok(()) => {
+                if self.lu.pivoting_factorizations + self.lu.refactorizations == 1 {
                     log::debug!(
-                        "faer sparse LU: symbolic analysis #{} (n = {n}, nnz = {})",
-                        self.symbolic_analyses,
-                        self.row_idx.len()
+                        "sparse LU: n = {n}, {} entries, {} in the factors",
+                        self.row_idx.len(),
+                        self.lu.factor_nnz()
                     );
                 }
-                Err(e) => {
-                    return Err(LuFailure::Fatal(format!(
-                        "symbolic LU analysis failed: {e:?}"
-                    )));
-                }
+                self.factored = true;
+                Ok(())
             }
+            Err(LuError::Singular(m)) => Err(LuFailure::Recoverable(format!(
+                "sparse LU: iteration matrix is singular ({m})"
+            ))),
         }
-        let Some(symbolic) = self.symbolic.clone() else {
-            return Err(LuFailure::Fatal("missing symbolic analysis".into()));
-        };
-        let sym = SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
-        let mat = SparseColMatRef::new(sym, values);
-        let lu = Lu::try_new_with_symbolic(symbolic, mat).map_err(|e| {
-            LuFailure::Recoverable(format!("sparse LU factorization failed: {e:?}"))
-        })?;
-        // faer does not report tiny or zero pivots: probe the factorization
-        // with one solve and treat non-finite results as singular.
-        self.probe.clear();
-        self.probe.resize(n, 1.0);
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut self.probe, n, 1));
-        if self.probe.iter().any(|v| !v.is_finite()) {
-            return Err(LuFailure::Recoverable(
-                "sparse LU: iteration matrix is singular".into(),
-            ));
-        }
-        self.lu = Some(lu);
-        Ok(())
     }
 
     /// Solves `A x = b` in place (`x` holds `b` on entry).
-    pub(crate) fn solve_in_place(&self, x: &mut [f64]) -> Result<(), LuFailure> {
-        let Some(lu) = &self.lu else {
+    pub(crate) fn solve_in_place(&mut self, x: &mut [f64]) -> Result<(), LuFailure> {
+        if !self.factored {
             return Err(LuFailure::Fatal(
                 "solve called without a factorization".into(),
             ));
-        };
+        }
         if x.len() != self.n {
             return Err(LuFailure::Fatal(format!(
                 "right-hand side has length {} instead of {}",
@@ -165,8 +151,7 @@ impl FaerLu {
                 self.n
             )));
         }
-        let n = self.n;
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(x, n, 1));
+        self.lu.solve_in_place(x, &mut self.scratch);
         if x.iter().any(|v| !v.is_finite()) {
             return Err(LuFailure::Recoverable(
                 "sparse LU solve produced non-finite values".into(),
@@ -198,10 +183,10 @@ pub(crate) fn valid_csc(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> bool 
 // FFI glue: the SUNLinearSolver operations.
 // ---------------------------------------------------------------------------
 
-/// Creates a SUNDIALS linear solver backed by [`FaerLu`]. Returns null on
+/// Creates a SUNDIALS linear solver backed by [`IterationLu`]. Returns null on
 /// allocation failure. The solver owns its content and frees it in its
 /// `free` operation (called by `SUNLinSolFree`).
-pub(crate) fn new_faer_linear_solver(ctx: sys::SUNContext) -> sys::SUNLinearSolver {
+pub(crate) fn new_sparse_lu_solver(ctx: sys::SUNContext) -> sys::SUNLinearSolver {
     // SAFETY: `ctx` is a valid context owned by the caller; the returned
     // solver has freshly allocated, zeroed ops which we fill in.
     unsafe {
@@ -209,7 +194,7 @@ pub(crate) fn new_faer_linear_solver(ctx: sys::SUNContext) -> sys::SUNLinearSolv
         if ls.is_null() {
             return ls;
         }
-        let content = Box::into_raw(Box::<FaerLu>::default());
+        let content = Box::into_raw(Box::<IterationLu>::default());
         (*ls).content = content.cast::<c_void>();
         let ops = (*ls).ops;
         (*ops).gettype = Some(ls_gettype);
@@ -221,19 +206,19 @@ pub(crate) fn new_faer_linear_solver(ctx: sys::SUNContext) -> sys::SUNLinearSolv
     }
 }
 
-/// Borrows the [`FaerLu`] content of a solver created by
-/// [`new_faer_linear_solver`].
+/// Borrows the [`IterationLu`] content of a solver created by
+/// [`new_sparse_lu_solver`].
 ///
 /// # Safety
 /// `ls` must be such a solver, not yet freed, and no other reference to its
 /// content may be live.
-unsafe fn content<'a>(ls: sys::SUNLinearSolver) -> Option<&'a mut FaerLu> {
+unsafe fn content<'a>(ls: sys::SUNLinearSolver) -> Option<&'a mut IterationLu> {
     // SAFETY: guaranteed by the caller.
     unsafe {
         if ls.is_null() || (*ls).content.is_null() {
             None
         } else {
-            Some(&mut *((*ls).content.cast::<FaerLu>()))
+            Some(&mut *((*ls).content.cast::<IterationLu>()))
         }
     }
 }
@@ -246,19 +231,19 @@ unsafe extern "C" fn ls_getid(_ls: sys::SUNLinearSolver) -> sys::SUNLinearSolver
     sys::SUNLinearSolver_ID_SUNLINEARSOLVER_CUSTOM
 }
 
-fn failure_code(lu: &mut FaerLu, r: Result<(), LuFailure>) -> c_int {
+fn failure_code(lu: &mut IterationLu, r: Result<(), LuFailure>) -> c_int {
     match r {
         Ok(()) => {
             lu.last_failure = None;
             0
         }
         Err(LuFailure::Recoverable(m)) => {
-            log::debug!("faer sparse LU (recoverable): {m}");
+            log::debug!("sparse LU (recoverable): {m}");
             lu.last_failure = Some(m);
             RECOVERABLE_FAILURE
         }
         Err(LuFailure::Fatal(m)) => {
-            log::warn!("faer sparse LU: {m}");
+            log::warn!("sparse LU: {m}");
             lu.last_failure = Some(m);
             FATAL_FAILURE
         }
@@ -317,17 +302,38 @@ unsafe extern "C" fn ls_solve(
             let Some(lu) = content(ls) else {
                 return FATAL_FAILURE;
             };
-            let n = lu.n;
+            let n = usize::try_from(sys::N_VGetLength(x)).unwrap_or(0);
             let xp = sys::N_VGetArrayPointer(x);
             let bp = sys::N_VGetArrayPointer(b);
             if xp.is_null() || bp.is_null() {
                 return failure_code(lu, Err(LuFailure::Fatal("vector has no data".into())));
             }
+            if n > lu.n {
+                return failure_code(
+                    lu,
+                    Err(LuFailure::Fatal(format!(
+                        "vector of length {n} for a matrix of size {}",
+                        lu.n
+                    ))),
+                );
+            }
             if xp != bp {
                 std::ptr::copy(bp, xp, n);
             }
             let xs = std::slice::from_raw_parts_mut(xp, n);
-            let r = lu.solve_in_place(xs);
+            let r = if n == lu.n {
+                lu.solve_in_place(xs)
+            } else {
+                // Extended Jacobian: the bordering rows have zero right-hand sides.
+                let mut padded = std::mem::take(&mut lu.padded);
+                padded.clear();
+                padded.extend_from_slice(xs);
+                padded.resize(lu.n, 0.0);
+                let r = lu.solve_in_place(&mut padded);
+                xs.copy_from_slice(&padded[..n]);
+                lu.padded = padded;
+                r
+            };
             failure_code(lu, r)
         }
     }))
@@ -339,13 +345,13 @@ unsafe extern "C" fn ls_free(ls: sys::SUNLinearSolver) -> sys::SUNErrCode {
         return 0;
     }
     // SAFETY: the content was created by `Box::into_raw` in
-    // `new_faer_linear_solver` and is freed exactly once here.
+    // `new_sparse_lu_solver` and is freed exactly once here.
     unsafe {
         let content = (*ls).content;
         (*ls).content = std::ptr::null_mut();
         if !content.is_null() {
-            let boxed = Box::from_raw(content.cast::<FaerLu>());
-            // Dropping faer data does not panic in practice; never unwind into C.
+            let boxed = Box::from_raw(content.cast::<IterationLu>());
+            // Dropping the factors does not panic in practice; never unwind into C.
             let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
         }
         sys::SUNLinSolFreeEmpty(ls);
@@ -368,7 +374,7 @@ mod tests {
         let col_ptr = [0usize, 2, 5, 6];
         let row_idx = [0usize, 1, 0, 1, 2, 2];
         let (cp, ri) = (to_i64(&col_ptr), to_i64(&row_idx));
-        let mut lu = FaerLu::default();
+        let mut lu = IterationLu::default();
         let vals = [4.0, 1.0, 1.0, 3.0, 2.0, 5.0];
         lu.factorize(3, &cp, &ri, &vals).unwrap();
         let a = [[4.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 2.0, 5.0]];
@@ -389,7 +395,7 @@ mod tests {
     fn singular_and_nonfinite_are_recoverable() {
         let cp = [0i64, 1, 2];
         let ri = [0i64, 1];
-        let mut lu = FaerLu::default();
+        let mut lu = IterationLu::default();
         assert!(matches!(
             lu.factorize(2, &cp, &ri, &[1.0, 0.0]),
             Err(LuFailure::Recoverable(_))
@@ -407,7 +413,7 @@ mod tests {
 
     #[test]
     fn invalid_pattern_is_fatal() {
-        let mut lu = FaerLu::default();
+        let mut lu = IterationLu::default();
         let cp = [0i64, 2, 2];
         let ri = [1i64, 0];
         assert!(matches!(

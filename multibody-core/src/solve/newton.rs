@@ -2,7 +2,7 @@
 
 use crate::codegen::{DaeJacobian, Tape};
 
-use super::linsol::FaerLu;
+use super::linsol::IterationLu;
 
 /// Options of [`newton`].
 #[derive(Clone, Copy, Debug)]
@@ -70,7 +70,7 @@ pub(crate) fn newton(
     let mut values = vec![0.0; jacobian.nnz()];
     let col_ptr: Vec<i64> = jacobian.col_ptr.iter().map(|&c| c as i64).collect();
     let row_idx: Vec<i64> = jacobian.row_idx.iter().map(|&r| r as i64).collect();
-    let mut lu = FaerLu::default();
+    let mut lu = IterationLu::default();
     let mut delta = vec![0.0; n];
     let mut z_old = vec![0.0; n];
     let fail = |it: usize, f: &[f64], reason: String| NewtonOutcome {

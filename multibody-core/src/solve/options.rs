@@ -3,13 +3,18 @@
 /// Which linear solver IDA's Newton iteration uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum LinearSolverChoice {
-    /// Dense for up to 24 unknowns, faer's sparse LU above (the default).
+    /// Dense for up to 24 unknowns, [`Sparse`](Self::Sparse) above (the default).
     #[default]
     Auto,
     /// SUNDIALS' dense LU with the compiled Jacobian.
     Dense,
-    /// faer's sparse LU with the compiled sparse Jacobian.
+    /// Sparse LU (COLAMD order, pivots replayed) with the compiled sparse Jacobian, extended by intermediates
+    /// where that keeps it much sparser (multibody chains; see
+    /// [`ExtendedJacobian`](crate::codegen::ExtendedJacobian)).
     Sparse,
+    /// Sparse LU with the plain compiled Jacobian, never extended (for
+    /// comparisons).
+    SparsePlain,
     /// SUNDIALS' dense LU with IDA's difference-quotient Jacobian (for comparisons).
     DenseDifferenceQuotient,
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use crate::Error;
 use crate::codegen::dae::{CompiledDae, InputLayout};
-use crate::codegen::{JacobianWorkspace, Workspace};
+use crate::codegen::{ExtendedWorkspace, JacobianWorkspace, Workspace};
 use crate::expr::{Arena, Id, Node};
 use crate::names::closest;
 use crate::simplify::SimplifiedSystem;
@@ -40,6 +40,7 @@ pub struct DaeProblem<'a> {
 }
 
 /// Evaluates parameter values: bindings may refer to other parameters.
+#[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
 pub(crate) fn parameter_values(
     sys: &SimplifiedSystem,
     overrides: &HashMap<usize, f64>,
@@ -125,6 +126,15 @@ impl<'a> DaeProblem<'a> {
         let mut start_overrides = HashMap::default();
         for &(name, v) in values {
             if let Some(&j) = param_index.get(name) {
+                if sys.evaluated_parameters[j] {
+                    return Err(InitError::BadValue {
+                        model: sys.name.clone(),
+                        message: format!(
+                            "parameter `{name}` was evaluated at compile time (declared `evaluate`, or SimplifyOptions::evaluate_parameters); simplify the model again to change it"
+                        ),
+                    }
+                    .into());
+                }
                 param_overrides.insert(j, v);
             } else if let Some(&i) = var_index.get(name) {
                 start_overrides.insert(i, v);
@@ -228,7 +238,7 @@ impl<'a> DaeProblem<'a> {
     /// consistent).
     pub fn initial_residual(&self) -> Vec<f64> {
         let c = &self.sys.compiled;
-        let mut f = CompiledFunctions::new(c, &self.params);
+        let mut f = CompiledFunctions::new(c, &self.params, false);
         let mut out = vec![0.0; self.u0.len()];
         let _ = f.residual(self.tspan.0, &self.u0, &self.up0, &mut out);
         out
@@ -239,12 +249,16 @@ impl<'a> DaeProblem<'a> {
         let sys = self.sys;
         let c = &sys.compiled;
         let n = self.u0.len();
-        let linear_solver = match options.linear_solver {
-            LinearSolverChoice::Auto if n <= 24 => LinearSolver::Dense,
-            LinearSolverChoice::Auto => LinearSolver::SparseLu,
-            LinearSolverChoice::Dense => LinearSolver::Dense,
-            LinearSolverChoice::Sparse => LinearSolver::SparseLu,
-            LinearSolverChoice::DenseDifferenceQuotient => LinearSolver::DenseDifferenceQuotient,
+        let (linear_solver, extended) = match options.linear_solver {
+            LinearSolverChoice::Auto if n <= 24 => (LinearSolver::Dense, false),
+            LinearSolverChoice::Auto | LinearSolverChoice::Sparse => {
+                (LinearSolver::SparseLu, c.extended.is_some())
+            }
+            LinearSolverChoice::SparsePlain => (LinearSolver::SparseLu, false),
+            LinearSolverChoice::Dense => (LinearSolver::Dense, false),
+            LinearSolverChoice::DenseDifferenceQuotient => {
+                (LinearSolver::DenseDifferenceQuotient, false)
+            }
         };
         let settings = IdaSettings {
             rtol: options.rtol,
@@ -276,7 +290,7 @@ impl<'a> DaeProblem<'a> {
                 t_end: self.tspan.1,
             },
         };
-        let mut f = CompiledFunctions::new(c, &self.params);
+        let mut f = CompiledFunctions::new(c, &self.params, extended);
         let mut t_out = Vec::new();
         let mut u_out = Vec::new();
         let mut up_out = Vec::new();
@@ -341,11 +355,15 @@ pub(crate) struct CompiledFunctions<'c> {
     inputs: Vec<f64>,
     ws: Workspace,
     jws: JacobianWorkspace,
+    /// Workspace of the extended Jacobian, when it is used.
+    ews: Option<ExtendedWorkspace>,
     layout: InputLayout,
 }
 
 impl<'c> CompiledFunctions<'c> {
-    pub(crate) fn new(c: &'c CompiledDae, params: &[f64]) -> Self {
+    /// Functions of `c` at parameter values `params`; `extended` selects the extended
+    /// Jacobian (when `c` has one; sparse LU only).
+    pub(crate) fn new(c: &'c CompiledDae, params: &[f64], extended: bool) -> Self {
         let layout = c.layout;
         let mut inputs = vec![0.0; layout.len()];
         for (j, &p) in params.iter().enumerate().take(layout.n_params) {
@@ -356,6 +374,11 @@ impl<'c> CompiledFunctions<'c> {
             inputs,
             ws: c.residual.workspace(),
             jws: c.jacobian.workspace(&c.residual),
+            ews: c
+                .extended
+                .as_ref()
+                .filter(|_| extended)
+                .map(|e| e.workspace(&c.residual)),
             layout,
         }
     }
@@ -396,10 +419,20 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
-        Some((
-            self.c.jacobian.col_ptr.clone(),
-            self.c.jacobian.row_idx.clone(),
-        ))
+        match (&self.ews, &self.c.extended) {
+            (Some(_), Some(e)) => Some((e.col_ptr.clone(), e.row_idx.clone())),
+            _ => Some((
+                self.c.jacobian.col_ptr.clone(),
+                self.c.jacobian.row_idx.clone(),
+            )),
+        }
+    }
+
+    fn jacobian_dimension(&self) -> usize {
+        match (&self.ews, &self.c.extended) {
+            (Some(_), Some(e)) => e.dimension(),
+            _ => self.layout.n,
+        }
     }
 
     fn jacobian(
@@ -411,8 +444,12 @@ impl DaeFunctions for CompiledFunctions<'_> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         self.load(t, y, yp);
-        self.c
-            .jacobian
-            .eval(&self.c.residual, &self.inputs, cj, &mut self.jws, values)
+        match (&mut self.ews, &self.c.extended) {
+            (Some(ews), Some(e)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
+            _ => self
+                .c
+                .jacobian
+                .eval(&self.c.residual, &self.inputs, cj, &mut self.jws, values),
+        }
     }
 }

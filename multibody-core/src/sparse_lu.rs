@@ -1,0 +1,576 @@
+//! Sparse LU with refactorization, for IDA's iteration matrices: the pattern never
+//! changes during an integration and the values change slowly, so the pivot sequence of
+//! one factorization usually serves the next ones.
+//!
+//! The first factorization of a pattern orders the columns by COLAMD (from faer) and
+//! runs a left-looking Gilbert-Peierls LU with threshold partial pivoting (the row a
+//! maximum transversal matched to the column is kept when it is within a factor of
+//! [`DIAGONAL_PREFERENCE`] of the largest candidate). It records the pivot rows and the patterns of `L` and `U`.
+//! A refactorization replays them: no graph search, no pivot search, just the
+//! arithmetic. If a replayed pivot has become small compared with the entries below it
+//! (growth beyond [`REFACTOR_PIVOT_TOLERANCE`]), the factorization is redone with
+//! pivoting.
+//!
+//! `P A Q = L U`: `L` unit lower triangular with its entries kept by original row index,
+//! `U` upper triangular by pivot step.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::linalg::colamd;
+
+use crate::structure::BipartiteGraph;
+use crate::structure::matching::maximum_matching;
+
+/// A candidate on the structural diagonal is taken as pivot when it is at least this
+/// fraction of the largest candidate in magnitude.
+pub(crate) const DIAGONAL_PREFERENCE: f64 = 0.1;
+
+/// A replayed pivot smaller than this fraction of the largest entry of its column below
+/// it triggers a factorization with fresh pivoting.
+pub(crate) const REFACTOR_PIVOT_TOLERANCE: f64 = 1e-3;
+
+/// Why a factorization failed.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum LuError {
+    /// The matrix is singular (no non-zero pivot in some column) or not finite.
+    Singular(String),
+}
+
+/// The LU factors and the work space to recompute them.
+#[derive(Default, Debug, Clone)]
+pub(crate) struct SparseLu {
+    n: usize,
+    /// Column order: step k eliminates column `col_order[k]` of `A`.
+    col_order: Vec<usize>,
+    /// Per column: the row of a maximum transversal (the "diagonal" preferred as pivot).
+    preferred_row: Vec<usize>,
+    /// Pivot row of each step (original row index).
+    pivot_row: Vec<usize>,
+    /// Step of each original row (`usize::MAX` while not pivotal).
+    row_step: Vec<usize>,
+    /// `L` by step: original rows and multipliers (unit diagonal not stored).
+    l_ptr: Vec<usize>,
+    l_row: Vec<usize>,
+    l_val: Vec<f64>,
+    /// `U` by step, strictly upper part: earlier steps in topological order, values.
+    u_ptr: Vec<usize>,
+    u_step: Vec<usize>,
+    /// Pivot row of each `u_step` entry (saves an indirection when refactoring).
+    u_row: Vec<usize>,
+    u_val: Vec<f64>,
+    u_diag: Vec<f64>,
+    /// Whether the factors hold a complete factorization whose patterns can be replayed.
+    factored: bool,
+    /// Dense work vector by original row (kept zero between columns).
+    work: Vec<f64>,
+    /// Depth-first search scratch.
+    mark: Vec<usize>,
+    stack: Vec<(usize, usize)>,
+    reach: Vec<usize>,
+    /// Number of factorizations with pivoting (for tests and logs).
+    pub(crate) pivoting_factorizations: usize,
+    /// Number of refactorizations that replayed the pivots.
+    pub(crate) refactorizations: usize,
+}
+
+impl SparseLu {
+    /// Forgets the pattern: the next factorization orders and pivots afresh.
+    pub(crate) fn reset(&mut self, n: usize, col_ptr: &[usize], row_idx: &[usize]) {
+        self.n = n;
+        self.factored = false;
+        (self.col_order, self.preferred_row) = ordering(n, col_ptr, row_idx);
+    }
+
+    /// Factorizes the `n x n` CSC matrix (pattern as given to [`reset`](Self::reset)),
+    /// replaying the previous pivots when possible.
+    pub(crate) fn factorize(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+    ) -> Result<(), LuError> {
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            self.factored = false;
+            return Err(LuError::Singular(format!("matrix entry {k} is not finite")));
+        }
+        if self.factored && self.refactor(col_ptr, row_idx, values) {
+            self.refactorizations += 1;
+            return Ok(());
+        }
+        self.pivoting_factorizations += 1;
+        let r = self.factor_with_pivoting(col_ptr, row_idx, values);
+        self.factored = r.is_ok();
+        r
+    }
+
+    /// Left-looking LU with threshold partial pivoting; records the patterns.
+    fn factor_with_pivoting(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+    ) -> Result<(), LuError> {
+        let n = self.n;
+        self.pivot_row.clear();
+        self.pivot_row.resize(n, usize::MAX);
+        self.row_step.clear();
+        self.row_step.resize(n, usize::MAX);
+        self.l_ptr.clear();
+        self.l_row.clear();
+        self.l_val.clear();
+        self.u_ptr.clear();
+        self.u_step.clear();
+        self.u_row.clear();
+        self.u_val.clear();
+        self.u_diag.clear();
+        self.u_diag.resize(n, 0.0);
+        self.work.clear();
+        self.work.resize(n, 0.0);
+        self.mark.clear();
+        self.mark.resize(n, usize::MAX);
+        self.l_ptr.push(0);
+        self.u_ptr.push(0);
+        for k in 0..n {
+            let col = self.col_order[k];
+            let entries = col_ptr[col]..col_ptr[col + 1];
+            // Pattern of x = L \ A[:, col]: rows reachable through pivotal rows, in
+            // topological order (reverse post-order of the depth-first search).
+            self.reach.clear();
+            for &r in &row_idx[entries.clone()] {
+                if self.mark[r] != k {
+                    self.dfs(r, k);
+                }
+            }
+            for p in entries {
+                self.work[row_idx[p]] = values[p];
+            }
+            // Eliminate with the earlier steps, in topological order.
+            for idx in (0..self.reach.len()).rev() {
+                let r = self.reach[idx];
+                let s = self.row_step[r];
+                if s == usize::MAX {
+                    continue;
+                }
+                let x = self.work[r];
+                self.u_step.push(s);
+                self.u_row.push(r);
+                self.u_val.push(x);
+                if x != 0.0 {
+                    for q in self.l_ptr[s]..self.l_ptr[s + 1] {
+                        self.work[self.l_row[q]] -= self.l_val[q] * x;
+                    }
+                }
+            }
+            // Pivot among the rows that are not pivotal yet.
+            let mut best = usize::MAX;
+            let mut best_abs = -1.0f64;
+            let mut diag_abs = -1.0f64;
+            for &r in &self.reach {
+                if self.row_step[r] == usize::MAX {
+                    let a = self.work[r].abs();
+                    if a > best_abs {
+                        best_abs = a;
+                        best = r;
+                    }
+                    if r == self.preferred_row[col] {
+                        diag_abs = a;
+                    }
+                }
+            }
+            if best == usize::MAX || best_abs == 0.0 || !best_abs.is_finite() {
+                for &r in &self.reach {
+                    self.work[r] = 0.0;
+                }
+                return Err(LuError::Singular(format!(
+                    "no usable pivot in column {col} (step {k} of {n})"
+                )));
+            }
+            if diag_abs >= DIAGONAL_PREFERENCE * best_abs && diag_abs > 0.0 {
+                best = self.preferred_row[col];
+            }
+            let pivot = self.work[best];
+            self.pivot_row[k] = best;
+            self.row_step[best] = k;
+            self.u_diag[k] = pivot;
+            for &r in &self.reach {
+                if self.row_step[r] == usize::MAX {
+                    self.l_row.push(r);
+                    self.l_val.push(self.work[r] / pivot);
+                }
+                self.work[r] = 0.0;
+            }
+            self.l_ptr.push(self.l_row.len());
+            self.u_ptr.push(self.u_step.len());
+        }
+        Ok(())
+    }
+
+    /// Depth-first search from row `r` through `L`'s columns, appending rows in
+    /// post-order to `reach` (marks with `k`).
+    fn dfs(&mut self, r: usize, k: usize) {
+        self.stack.clear();
+        self.mark[r] = k;
+        self.stack.push((r, 0));
+        while let Some(&mut (row, ref mut next)) = self.stack.last_mut() {
+            let s = self.row_step[row];
+            let mut pushed = None;
+            if s != usize::MAX {
+                let (start, end) = (self.l_ptr[s], self.l_ptr[s + 1]);
+                while start + *next < end {
+                    let child = self.l_row[start + *next];
+                    *next += 1;
+                    if self.mark[child] != k {
+                        pushed = Some(child);
+                        break;
+                    }
+                }
+            }
+            match pushed {
+                Some(child) => {
+                    self.mark[child] = k;
+                    self.stack.push((child, 0));
+                }
+                None => {
+                    self.stack.pop();
+                    self.reach.push(row);
+                }
+            }
+        }
+    }
+
+    /// Recomputes the factors with the recorded pivots and patterns; `false` if a pivot
+    /// became too small (the factors are then invalid).
+    fn refactor(&mut self, col_ptr: &[usize], row_idx: &[usize], values: &[f64]) -> bool {
+        let n = self.n;
+        // Local slices: the compiler keeps their pointers in registers.
+        let SparseLu {
+            col_order,
+            pivot_row,
+            l_ptr,
+            l_row,
+            l_val,
+            u_ptr,
+            u_step,
+            u_row,
+            u_val,
+            u_diag,
+            work,
+            ..
+        } = self;
+        let (col_order, pivot_row) = (&col_order[..n], &pivot_row[..n]);
+        let (l_ptr, l_row, u_ptr, u_step, u_row) =
+            (&l_ptr[..], &l_row[..], &u_ptr[..], &u_step[..], &u_row[..]);
+        let (l_val, u_val, u_diag, work) = (
+            &mut l_val[..],
+            &mut u_val[..],
+            &mut u_diag[..],
+            &mut work[..],
+        );
+        let mut ok = true;
+        for k in 0..n {
+            let col = col_order[k];
+            for p in col_ptr[col]..col_ptr[col + 1] {
+                work[row_idx[p]] = values[p];
+            }
+            for q in u_ptr[k]..u_ptr[k + 1] {
+                let r = u_row[q];
+                let x = work[r];
+                work[r] = 0.0;
+                u_val[q] = x;
+                let s = u_step[q];
+                let (a, b) = (l_ptr[s], l_ptr[s + 1]);
+                for (&row, &l) in l_row[a..b].iter().zip(&l_val[a..b]) {
+                    work[row] -= l * x;
+                }
+            }
+            let pr = pivot_row[k];
+            let pivot = work[pr];
+            work[pr] = 0.0;
+            u_diag[k] = pivot;
+            let inv = 1.0 / pivot;
+            let (a, b) = (l_ptr[k], l_ptr[k + 1]);
+            let mut below = 0.0f64;
+            for (&row, l) in l_row[a..b].iter().zip(&mut l_val[a..b]) {
+                let w = work[row];
+                below = below.max(w.abs());
+                *l = w * inv;
+                work[row] = 0.0;
+            }
+            // A replayed pivot must stay finite and not small next to the entries below.
+            ok &=
+                pivot.abs() >= REFACTOR_PIVOT_TOLERANCE * below && inv.is_finite() && pivot != 0.0;
+        }
+        if !ok {
+            self.factored = false;
+        }
+        ok
+    }
+
+    /// Solves `A x = b` in place (`x` holds `b` on entry); `scratch` has length n.
+    pub(crate) fn solve_in_place(&self, x: &mut [f64], scratch: &mut Vec<f64>) {
+        let n = self.n;
+        debug_assert!(self.factored && x.len() == n);
+        let (pivot_row, l_ptr, l_row, l_val) = (
+            &self.pivot_row[..n],
+            &self.l_ptr[..],
+            &self.l_row[..],
+            &self.l_val[..],
+        );
+        // Forward: L z = P b, in original row indexing.
+        for k in 0..n {
+            let v = x[pivot_row[k]];
+            if v != 0.0 {
+                let (a, b) = (l_ptr[k], l_ptr[k + 1]);
+                for (&row, &l) in l_row[a..b].iter().zip(&l_val[a..b]) {
+                    x[row] -= l * v;
+                }
+            }
+        }
+        scratch.clear();
+        scratch.extend(pivot_row.iter().map(|&r| x[r]));
+        let z = &mut scratch[..n];
+        let (u_ptr, u_step, u_val, u_diag) = (
+            &self.u_ptr[..],
+            &self.u_step[..],
+            &self.u_val[..],
+            &self.u_diag[..n],
+        );
+        // Backward: U y = z, by steps (U stored by columns).
+        for k in (0..n).rev() {
+            let y = z[k] / u_diag[k];
+            z[k] = y;
+            if y != 0.0 {
+                let (a, b) = (u_ptr[k], u_ptr[k + 1]);
+                for (&s, &u) in u_step[a..b].iter().zip(&u_val[a..b]) {
+                    z[s] -= u * y;
+                }
+            }
+        }
+        for (&c, &v) in self.col_order.iter().zip(z.iter()) {
+            x[c] = v;
+        }
+    }
+
+    /// Entries of `L` and `U` (diagonal included), for logs.
+    pub(crate) fn factor_nnz(&self) -> usize {
+        self.l_row.len() + self.u_step.len() + self.n
+    }
+}
+
+/// Fill-reducing order: COLAMD (from faer) orders the columns; a maximum transversal
+/// names the preferred pivot row of each column (its "diagonal"), kept when it is large
+/// enough, so that pivots stay where the structure put them. (AMD on the symmetrized
+/// pattern, KLU's choice, filled ten times more on multibody Jacobians.)
+fn ordering(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let mut g = BipartiteGraph::new(n);
+    let mut rows: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for c in 0..n {
+        for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+            rows[r].push(c);
+        }
+    }
+    for r in rows {
+        g.add_equation(r);
+    }
+    let m = maximum_matching(&g, None, None);
+    let preferred = (0..n).map(|c| m.var_to_eq[c].unwrap_or(c)).collect();
+    (column_order(n, col_ptr, row_idx), preferred)
+}
+
+/// COLAMD column order of the pattern (identity if faer cannot allocate its scratch).
+fn column_order(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
+    let identity = || (0..n).collect::<Vec<_>>();
+    if n == 0 {
+        return Vec::new();
+    }
+    let sym = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+    let req = colamd::order_scratch::<usize>(n, n, row_idx.len());
+    let Ok(mut mem) = MemBuffer::try_new(req) else {
+        return identity();
+    };
+    let stack = MemStack::new(&mut mem);
+    let mut perm = vec![0usize; n];
+    let mut perm_inv = vec![0usize; n];
+    match colamd::order(&mut perm, &mut perm_inv, sym, Default::default(), stack) {
+        Ok(()) => perm,
+        Err(_) => identity(),
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::needless_range_loop)]
+mod tests {
+    use super::*;
+
+    /// Dense matrix to CSC.
+    fn csc(a: &[Vec<f64>]) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+        let n = a.len();
+        let (mut cp, mut ri, mut v) = (vec![0], Vec::new(), Vec::new());
+        for j in 0..n {
+            for i in 0..n {
+                if a[i][j] != 0.0 {
+                    ri.push(i);
+                    v.push(a[i][j]);
+                }
+            }
+            cp.push(ri.len());
+        }
+        (cp, ri, v)
+    }
+
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn residual(a: &[Vec<f64>], x: &[f64], b: &[f64]) -> f64 {
+        let n = a.len();
+        (0..n)
+            .map(|i| ((0..n).map(|j| a[i][j] * x[j]).sum::<f64>() - b[i]).abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn random_sparse_systems_refactor_and_repivot() {
+        let mut s = 11u64;
+        for n in [1usize, 2, 7, 40, 150] {
+            // Random pattern with a full diagonal of possibly tiny values.
+            let mut a = vec![vec![0.0; n]; n];
+            for i in 0..n {
+                a[i][i] = 1.0 + lcg(&mut s);
+                for _ in 0..3 {
+                    let j = (lcg(&mut s) * n as f64) as usize % n;
+                    a[i][j] = lcg(&mut s) - 0.5;
+                }
+            }
+            let (cp, ri, v) = csc(&a);
+            let mut lu = SparseLu::default();
+            lu.reset(n, &cp, &ri);
+            lu.factorize(&cp, &ri, &v).unwrap();
+            let b: Vec<f64> = (0..n).map(|i| (i % 7) as f64 - 3.0).collect();
+            let mut x = b.clone();
+            let mut scratch = Vec::new();
+            lu.solve_in_place(&mut x, &mut scratch);
+            assert!(residual(&a, &x, &b) < 1e-10, "n = {n}");
+            // Slightly changed values: replayed pivots.
+            let v2: Vec<f64> = v.iter().map(|x| x * 1.01).collect();
+            lu.factorize(&cp, &ri, &v2).unwrap();
+            assert_eq!(lu.pivoting_factorizations, 1);
+            assert_eq!(lu.refactorizations, 1);
+            let mut x = b.clone();
+            lu.solve_in_place(&mut x, &mut scratch);
+            let a2: Vec<Vec<f64>> = a
+                .iter()
+                .map(|r| r.iter().map(|x| x * 1.01).collect())
+                .collect();
+            assert!(residual(&a2, &x, &b) < 1e-10, "n = {n} refactored");
+        }
+    }
+
+    #[test]
+    fn a_vanishing_pivot_makes_it_pivot_again() {
+        // [[e, 1], [1, 1]]: with e = 2 the diagonal pivots; with e = 0 the replayed
+        // pivot vanishes and rows must swap.
+        let (cp, ri) = (vec![0, 2, 4], vec![0, 1, 0, 1]);
+        let mut lu = SparseLu::default();
+        lu.reset(2, &cp, &ri);
+        lu.factorize(&cp, &ri, &[2.0, 1.0, 1.0, 1.0]).unwrap();
+        lu.factorize(&cp, &ri, &[0.0, 1.0, 1.0, 1.0]).unwrap();
+        assert_eq!(lu.pivoting_factorizations, 2);
+        let mut x = vec![1.0, 2.0];
+        lu.solve_in_place(&mut x, &mut Vec::new());
+        // 0 x0 + x1 = 1, x0 + x1 = 2.
+        assert!(
+            (x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14,
+            "{x:?}"
+        );
+    }
+
+    #[test]
+    fn singular_and_non_finite_are_reported() {
+        let (cp, ri) = (vec![0, 2, 4], vec![0, 1, 0, 1]);
+        let mut lu = SparseLu::default();
+        lu.reset(2, &cp, &ri);
+        assert!(lu.factorize(&cp, &ri, &[1.0, 2.0, 2.0, 4.0]).is_err());
+        assert!(lu.factorize(&cp, &ri, &[1.0, f64::NAN, 2.0, 4.0]).is_err());
+        lu.factorize(&cp, &ri, &[1.0, 2.0, 2.0, 5.0]).unwrap();
+        // Structurally singular: an empty column.
+        let (cp2, ri2) = (vec![0, 1, 1], vec![0]);
+        lu.reset(2, &cp2, &ri2);
+        assert!(lu.factorize(&cp2, &ri2, &[1.0]).is_err());
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    use super::*;
+
+    #[test]
+    #[ignore]
+    fn refactor_speed() {
+        // A chain-like matrix: block tridiagonal with 12x12 sparse blocks.
+        let nb = 100;
+        let b = 12;
+        let n = nb * b;
+        let mut entries: Vec<(usize, usize, f64)> = Vec::new();
+        let mut s = 3u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..nb {
+            for i in 0..b {
+                let r = k * b + i;
+                entries.push((r, r, 4.0 + rnd()));
+                for _ in 0..2 {
+                    let c = k * b + (rnd() * b as f64) as usize % b;
+                    if c != r {
+                        entries.push((r, c, rnd() - 0.5));
+                    }
+                }
+                if k + 1 < nb && i < 3 {
+                    entries.push((r, r + b, rnd() - 0.5));
+                    entries.push((r + b, r, rnd() - 0.5));
+                }
+            }
+        }
+        entries.sort_by_key(|&(r, c, _)| (c, r));
+        entries.dedup_by_key(|e| (e.0, e.1));
+        let mut cp = vec![0usize; n + 1];
+        for &(_, c, _) in &entries {
+            cp[c + 1] += 1;
+        }
+        for j in 0..n {
+            cp[j + 1] += cp[j];
+        }
+        let ri: Vec<usize> = entries.iter().map(|e| e.0).collect();
+        let v: Vec<f64> = entries.iter().map(|e| e.2).collect();
+        let mut lu = SparseLu::default();
+        lu.reset(n, &cp, &ri);
+        lu.factorize(&cp, &ri, &v).unwrap();
+        let reps = 2000;
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            lu.factorize(&cp, &ri, &v).unwrap();
+        }
+        let per = t.elapsed().as_secs_f64() / reps as f64;
+        let mut x = vec![1.0; n];
+        let mut scratch = Vec::new();
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            lu.solve_in_place(&mut x, &mut scratch);
+        }
+        let per_solve = t.elapsed().as_secs_f64() / reps as f64;
+        eprintln!(
+            "n {n} nnz {} factor nnz {} refactor {:.1} us solve {:.1} us",
+            v.len(),
+            lu.factor_nnz(),
+            per * 1e6,
+            per_solve * 1e6
+        );
+    }
+}
