@@ -2,7 +2,7 @@
 # vendored SUNDIALS, libclang for bindgen) when it is missing, so a fresh Debian machine
 # needs nothing else.
 
-EXAMPLE ?= dc_motor
+EXAMPLE ?= fourbar
 APT_PACKAGES := cmake libclang1-14 libclang-common-14-dev
 
 .PHONY: deps example test

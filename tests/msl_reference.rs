@@ -156,3 +156,44 @@ fn spring_mass_system() {
         assert!((s1[k] - s2[k]).abs() < 1e-6);
     }
 }
+
+/// MSL `Examples.Loops.Fourbar1`, a spatial loop, closed here by the cut joint `j5`
+/// (`iscut`): the same mechanism and physics as MSL's automatic breaking.
+#[test]
+fn fourbar1_with_cut_joint() {
+    use multibody::parts::BodyCylinder;
+    let model = system! {
+        name: "Fourbar1";
+        world = World::default();
+        j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755982989, state_priority: 1000.0 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        b1 = BodyCylinder { r: [0.0, 0.5, 0.1], diameter: Some(0.05) };
+        b2 = BodyCylinder { r: [0.0, 0.2, 0.0], diameter: Some(0.05) };
+        b3 = BodyCylinder { r: [-1.0, 0.3, 0.1], diameter: Some(0.05) };
+        rev = Revolute { n: [0.0, 1.0, 0.0] };
+        rev1 = Revolute { n: [0.0, 0.0, 1.0] };
+        j3 = Revolute { n: [1.0, 0.0, 0.0] };
+        j4 = Revolute { n: [0.0, 1.0, 0.0] };
+        j5 = Revolute { n: [0.0, 0.0, 1.0], iscut: true };
+        b0 = FixedTranslation { r: [1.2, 0.0, 0.0] };
+        connect(j2.frame_b, b2.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+        connect(rev.frame_a, b2.frame_b);
+        connect(rev.frame_b, rev1.frame_a);
+        connect(rev1.frame_b, b3.frame_a);
+        connect(world.frame_b, j1.frame_a);
+        connect(b1.frame_b, j3.frame_a);
+        connect(j3.frame_b, j4.frame_a);
+        connect(j4.frame_b, j5.frame_a);
+        connect(j5.frame_b, b3.frame_b);
+        connect(b0.frame_a, world.frame_b);
+        connect(b0.frame_b, j2.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states(), ["j1.phi", "j1.w"]);
+    let sol = DaeProblem::new(&ssys, &[("j1.phi", 0.0)], (0.0, 5.0))
+        .unwrap()
+        .solve(&options(5.0))
+        .unwrap();
+    assert_in_tube("Fourbar1", &sol, &["j1.phi", "j1.w"]);
+}

@@ -8,6 +8,13 @@
 //!
 //! `cargo run --release --example bench_pendulum_chain [N ...]` prints one JSON object
 //! per line with the keys of the rotational chain benchmark.
+//!
+//! Environment variables: `BENCH_STATS` prints the translation statistics and tape
+//! diagnostics (operation counts, timed residual evaluations, extended-Jacobian
+//! variants), `BENCH_EVAL_ONLY` (with `BENCH_STATS`) only times residual evaluations,
+//! `BENCH_LINEAR_SOLVER=dense|sparse|plain|dq` forces IDA's linear solver,
+//! `BENCH_EVALUATE` folds every parameter (`SimplifyOptions::evaluate_parameters`),
+//! `BENCH_ONLY_OURS` skips the baseline.
 
 mod rne;
 

@@ -134,6 +134,10 @@ pub struct Temporaries<'p> {
     pub next: u32,
     /// Values of the parameters (by index).
     pub params: &'p [f64],
+    /// Leaves that tearing must not choose as tearing variables unless nothing else
+    /// works (the entries of orientation matrices: they are computed from the joint
+    /// coordinates, never iterated on).
+    pub never_tear: &'p HashSet<Id>,
 }
 
 impl Temporaries<'_> {
@@ -291,7 +295,8 @@ fn solve_block(
         }
         teqs.push(TearingEquation { vars: tv });
     }
-    let t = tear(k, &teqs, None);
+    let tearable: Vec<bool> = vars.iter().map(|v| !temps.never_tear.contains(v)).collect();
+    let t = tear(k, &teqs, Some(&tearable));
     let torn: Vec<Id> = t.torn_vars.iter().map(|&j| vars[j]).collect();
     let assignments: Vec<(usize, Id)> = t.assignments.iter().map(|&(e, j)| (e, vars[j])).collect();
     if linear {

@@ -143,9 +143,15 @@ pub fn structural_simplify_with(
     let default_params =
         crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
             .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
+    let never_tear: HashSet<Id> = flat
+        .derivative_rules
+        .iter()
+        .map(|&(x, _)| flat.arena.var(x))
+        .collect();
     let mut temps = Temporaries {
         next: nv as u32,
         params: &default_params,
+        never_tear: &never_tear,
     };
     let schedule = causalize(
         &mut flat.arena,

@@ -6,7 +6,9 @@ use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, Node};
 use crate::structure::BipartiteGraph;
-use crate::structure::dummy_derivatives::{SelectionError, StateRank, dummy_derivatives};
+use crate::structure::dummy_derivatives::{
+    SelectionError, StateRank, dummy_derivatives_with_intermediates,
+};
 use crate::structure::pantelides::{StructurallySingular, pantelides_with_implicit};
 
 use super::error::SimplifyError;
@@ -260,37 +262,45 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     let mut red = red;
     red.var_diff = var_diff.clone();
     red.graph.n_vars = table.slots.len();
-    let selection = match dummy_derivatives(&red, n_original, &rank) {
-        Ok(s) => s,
-        Err(SelectionError::Singular {
-            equations,
-            candidates,
-        }) => {
-            return Err(SimplifyError::singular(
-                model,
-                equations.iter().map(|&e| eqs[e].text.clone()).collect(),
-                candidates
-                    .iter()
-                    .map(|&v| table.slots[v].name.clone())
-                    .collect(),
-                Vec::new(),
-            ));
+    let mut intermediates = vec![false; table.slots.len()];
+    for deps in &implicit {
+        for &d in deps {
+            // Orientation entries are derivatives of their own kind, not intermediates.
+            intermediates[d] = implicit.get(d).is_none_or(Vec::is_empty);
         }
-        Err(SelectionError::AlwaysViolated(slots)) => {
-            return Err(SimplifyError::StateSelection {
-                model: model.to_string(),
-                message: format!(
-                    "{} must be states (state_select = always), but the constraints of the \
-                     model leave fewer degrees of freedom",
-                    slots
+    }
+    let selection =
+        match dummy_derivatives_with_intermediates(&red, n_original, &rank, &intermediates) {
+            Ok(s) => s,
+            Err(SelectionError::Singular {
+                equations,
+                candidates,
+            }) => {
+                return Err(SimplifyError::singular(
+                    model,
+                    equations.iter().map(|&e| eqs[e].text.clone()).collect(),
+                    candidates
                         .iter()
-                        .map(|&v| format!("`{}`", table.slots[v].name))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            });
-        }
-    };
+                        .map(|&v| table.slots[v].name.clone())
+                        .collect(),
+                    Vec::new(),
+                ));
+            }
+            Err(SelectionError::AlwaysViolated(slots)) => {
+                return Err(SimplifyError::StateSelection {
+                    model: model.to_string(),
+                    message: format!(
+                        "{} must be states (state_select = always), but the constraints of the \
+                     model leave fewer degrees of freedom",
+                        slots
+                            .iter()
+                            .map(|&v| format!("`{}`", table.slots[v].name))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                });
+            }
+        };
     for level in &selection.levels {
         if level.candidates.len() > level.equations.len() {
             // Does the Jacobian of the level's equations with respect to the chosen

@@ -12,7 +12,7 @@
 
 use std::collections::VecDeque;
 
-use crate::hash::HashMap;
+use crate::hash::{HashMap, HashSet};
 
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, Node};
@@ -220,9 +220,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let residuals: Vec<Id> = eqs.iter().map(|e| e.0).collect();
     let mut known: Vec<f64> = input.params.clone();
     known.extend(input.starts.iter().map(|s| s.unwrap_or(0.0)));
+    let never_tear = HashSet::default();
     let mut temps = Temporaries {
         next: sys.next_temporary,
         params: &known,
+        never_tear: &never_tear,
     };
     let schedule = causalize(
         &mut arena,

@@ -70,6 +70,22 @@ pub fn dummy_derivatives(
     n_original: usize,
     rank: &[StateRank],
 ) -> Result<StateSelection, SelectionError> {
+    dummy_derivatives_with_intermediates(red, n_original, rank, &[])
+}
+
+/// [`dummy_derivatives`] for systems with implicit derivatives: `intermediates[v]` marks
+/// the slots that implicit derivatives contain (the angular velocities in the
+/// derivative of an orientation matrix). They are derivatives of nothing, so a level's
+/// equations that contain them reach the candidates only through the equations that
+/// determine them (the joints' propagation of angular velocity, differentiated one time
+/// less than the level's equations): where the plain selection fails, those equations
+/// and intermediates join the level's matching.
+pub fn dummy_derivatives_with_intermediates(
+    red: &IndexReduction,
+    n_original: usize,
+    rank: &[StateRank],
+    intermediates: &[bool],
+) -> Result<StateSelection, SelectionError> {
     let n_slots = red.var_diff.len();
     let anti = red.antiderivative_var();
     let counts = red.differentiation_counts(n_original);
@@ -132,7 +148,18 @@ pub fn dummy_derivatives(
                 .then(ky.2.cmp(&kx.2))
                 .then(y.cmp(&x))
         });
-        let selected = select(&equations, &candidates, |e| var_eqs_of(e));
+        let mut selected = select(&equations, &candidates, |e| var_eqs_of(e));
+        if selected.len() < equations.len() && level >= 2 {
+            // The level's equations may reach their candidates only through
+            // intermediate unknowns of the same order that equations outside the level
+            // determine (a frame's angular velocity, propagated from the joints' speeds,
+            // is what the derivative of a loop's position constraint contains).
+            if let Some(alternative) =
+                select_with_companions(red, &counts, level, &equations, &candidates, intermediates)
+            {
+                selected = alternative;
+            }
+        }
         if selected.len() < equations.len() {
             return Err(SelectionError::Singular {
                 equations,
@@ -168,6 +195,72 @@ pub fn dummy_derivatives(
         states,
         levels,
     })
+}
+
+/// The selection of a level (`level >= 2`) seen through intermediates: the marked
+/// slots its equations contain, together with the *companions*, the equations
+/// differentiated exactly `level - 1` times that contain them (taken undifferentiated:
+/// they are of the level's order), closed transitively. Intermediates are matched
+/// first, then candidates in order; the selection holds when every equation is matched
+/// and the candidates kept are as many as the level's equations.
+fn select_with_companions(
+    red: &IndexReduction,
+    counts: &[usize],
+    level: usize,
+    equations: &[usize],
+    candidates: &[usize],
+    marked: &[bool],
+) -> Option<Vec<usize>> {
+    use crate::hash::HashSet;
+    let is_candidate: HashSet<usize> = candidates.iter().copied().collect();
+    let is_intermediate =
+        |v: usize| !is_candidate.contains(&v) && marked.get(v).copied().unwrap_or(false);
+    let companions_pool: Vec<usize> = (0..counts.len())
+        .filter(|&e| counts[e] == level - 1)
+        .collect();
+    let mut rows: Vec<usize> = equations.to_vec();
+    let mut intermediates: HashSet<usize> = HashSet::default();
+    let mut in_rows: HashSet<usize> = rows.iter().copied().collect();
+    loop {
+        let before = (rows.len(), intermediates.len());
+        for &e in &rows {
+            for &v in &red.graph.eq_vars[e] {
+                if is_intermediate(v) {
+                    intermediates.insert(v);
+                }
+            }
+        }
+        for &e in &companions_pool {
+            if !in_rows.contains(&e)
+                && red.graph.eq_vars[e]
+                    .iter()
+                    .any(|v| intermediates.contains(v))
+            {
+                in_rows.insert(e);
+                rows.push(e);
+            }
+        }
+        if (rows.len(), intermediates.len()) == before {
+            break;
+        }
+    }
+    if intermediates.is_empty() {
+        return None;
+    }
+    let mut columns: Vec<usize> = intermediates.iter().copied().collect();
+    columns.sort_unstable();
+    let n_intermediate = columns.len();
+    columns.extend_from_slice(candidates);
+    let kept = select(&rows, &columns, |e| &red.graph.eq_vars[e]);
+    if kept.len() < rows.len() {
+        return None;
+    }
+    let chosen: Vec<usize> = kept
+        .into_iter()
+        .filter(|v| is_candidate.contains(v))
+        .collect();
+    let matched_intermediates = rows.len() - chosen.len();
+    (chosen.len() == equations.len() && matched_intermediates <= n_intermediate).then_some(chosen)
 }
 
 /// Greedy matroid selection: each candidate in order is kept when an augmenting path
