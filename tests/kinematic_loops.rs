@@ -178,3 +178,33 @@ fn cut_joint_fourbar_has_j1_as_its_only_states() {
         "j2.s left its stroke"
     );
 }
+
+#[test]
+fn the_spatial_loop_cut_anywhere_has_the_same_unknowns() {
+    // Multibody.jl: cutting j5 gives 8 unknowns, any other joint 17. Here every choice,
+    // and none (automatic breaking at a connection), gives j1's two states and five
+    // loop angles.
+    for cut in [
+        Some("j2"),
+        None,
+        Some("j3"),
+        Some("j4"),
+        Some("j5"),
+        Some("rev"),
+        Some("rev1"),
+    ] {
+        let ssys = structural_simplify(&fourbar_cutjoint_example::fourbar_with_cut(cut))
+            .unwrap_or_else(|e| panic!("cut {cut:?}: {e}"));
+        assert_eq!(ssys.states(), ["j1.phi", "j1.w"], "cut {cut:?}");
+        assert_eq!(
+            ssys.unknowns().len(),
+            7,
+            "cut {cut:?}: {:?}",
+            ssys.unknowns()
+        );
+        assert!(
+            !ssys.unknowns().iter().any(|u| u.contains(".R.T[")),
+            "cut {cut:?}"
+        );
+    }
+}

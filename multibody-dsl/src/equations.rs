@@ -61,19 +61,7 @@ impl Translator {
     /// Registers the branches and potential roots that no conditional followed (their
     /// equations are written unconditionally).
     pub fn finish(self) -> TokenStream {
-        let mut out = TokenStream::new();
-        for b in self.branches.into_iter().filter(|b| !b.used) {
-            let (a, c) = (&b.nodes[0], &b.nodes[1]);
-            out.extend(
-                quote!(__s.branch(&#a, &#c, ::std::vec::Vec::new(), ::std::vec::Vec::new());),
-            );
-        }
-        for p in self.potential_roots.into_iter().filter(|p| !p.used) {
-            let n = &p.nodes[0];
-            let prio = p.priority.map_or(quote!(0), |e| quote!(#e));
-            out.extend(quote!(__s.potential_root(&#n, #prio, ::std::vec::Vec::new(), ::std::vec::Vec::new());));
-        }
-        out
+        registrations(self.branches, self.potential_roots)
     }
 
     fn statement(&mut self, s: &Stmt, initial: bool) -> syn::Result<TokenStream> {
@@ -92,7 +80,13 @@ impl Translator {
     }
 
     fn block(&mut self, b: &syn::Block, initial: bool) -> syn::Result<TokenStream> {
-        let inner = self.translate(&b.stmts, initial)?;
+        let (nb, np) = (self.branches.len(), self.potential_roots.len());
+        let mut inner = self.translate(&b.stmts, initial)?;
+        // Declarations of this block that no conditional followed belong to it (a
+        // branch inside `else` of `if iscut` exists only when the joint is no cut).
+        let branches = self.branches.split_off(nb);
+        let potential_roots = self.potential_roots.split_off(np);
+        inner.extend(registrations(branches, potential_roots));
         Ok(quote!({ #inner }))
     }
 
@@ -335,4 +329,22 @@ pub fn translate(stmts: &[Stmt], initial: bool) -> syn::Result<TokenStream> {
     let mut out = t.translate(stmts, initial)?;
     out.extend(t.finish());
     Ok(out)
+}
+
+/// Registers the branches and potential roots that no conditional followed (their
+/// equations are written unconditionally).
+fn registrations(branches: Vec<Pending>, potential_roots: Vec<Pending>) -> TokenStream {
+    let mut out = TokenStream::new();
+    for b in branches.into_iter().filter(|b| !b.used) {
+        let (a, c) = (&b.nodes[0], &b.nodes[1]);
+        out.extend(quote!(__s.branch(&#a, &#c, ::std::vec::Vec::new(), ::std::vec::Vec::new());));
+    }
+    for p in potential_roots.into_iter().filter(|p| !p.used) {
+        let n = &p.nodes[0];
+        let prio = p.priority.map_or(quote!(0), |e| quote!(#e));
+        out.extend(
+            quote!(__s.potential_root(&#n, #prio, ::std::vec::Vec::new(), ::std::vec::Vec::new());),
+        );
+    }
+    out
 }

@@ -270,3 +270,31 @@ fn graph_statements_become_branch_and_root_declarations() {
     let e = crate::expand::component(&d).err().unwrap().to_string();
     assert!(e.contains("needs a preceding `branch(..)`"), "{e}");
 }
+
+#[test]
+fn a_branch_inside_a_conditional_block_is_declared_only_there() {
+    let d = parse_component(quote! {
+        pub struct Cut {
+            structural iscut: bool = false;
+            connector frame_a: Frame;
+            connector frame_b: Frame;
+            equation {
+                if iscut {
+                    x = 1.0;
+                } else {
+                    branch(frame_a.R, frame_b.R);
+                    frame_b.R = frame_a.R;
+                }
+            }
+        }
+    })
+    .unwrap();
+    let out = crate::expand::component(&d).unwrap().to_string();
+    // The registration sits inside the `else` block: no brace closes it before.
+    let branch_at = out.find("__s . branch").expect("the branch is declared");
+    let else_at = out[..branch_at]
+        .rfind("else {")
+        .expect("inside the else block");
+    assert!(!out[else_at + 6..branch_at].contains('}'), "{out}");
+    assert_eq!(out.matches("__s . branch").count(), 1, "{out}");
+}

@@ -26,7 +26,7 @@ pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
 
 use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
-use crate::expr::Id;
+use crate::expr::{Id, Node};
 use crate::model::{System, check_balance, flatten};
 
 use causalize::{Temporaries, causalize};
@@ -80,6 +80,16 @@ pub fn structural_simplify_with(
     for &(x, _) in &flat.derivative_rules {
         has_rule[x as usize] = true;
     }
+    // Angular velocities: what the derivative rules contain, under the aliases.
+    let mut angular_velocity = vec![false; nv];
+    for &(_, expr) in &flat.derivative_rules {
+        let e = flat.arena.substitute(expr, &aliases.map);
+        for leaf in flat.arena.leaves(e) {
+            if let Node::Var(v) = flat.arena.node(leaf) {
+                angular_velocity[*v as usize] = !has_rule[*v as usize];
+            }
+        }
+    }
     let kept_eqs: Vec<usize> = (0..flat.equations.len())
         .filter(|&e| !aliases.removed[e])
         .collect();
@@ -127,6 +137,7 @@ pub fn structural_simplify_with(
             derivative_map: &aliases.derivative_map,
             equations,
             definitions,
+            angular_velocity: &angular_velocity,
             show: &show,
         },
         &name,

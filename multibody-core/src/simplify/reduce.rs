@@ -137,6 +137,9 @@ pub(crate) struct ReduceInput<'a> {
     pub equations: Vec<(Id, String)>,
     /// Per equation: whether it defines a variable with a derivative rule.
     pub definitions: Vec<bool>,
+    /// Per flat variable: whether it is an angular velocity (a variable that the
+    /// derivative rules of orientation entries contain).
+    pub angular_velocity: &'a [bool],
     /// Displays an expression (for messages).
     pub show: &'a dyn Fn(&Arena, Id) -> String,
 }
@@ -171,6 +174,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         derivative_map,
         equations,
         definitions,
+        angular_velocity,
         show,
     } = input;
     let mut table = SlotTable {
@@ -262,13 +266,13 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     let mut red = red;
     red.var_diff = var_diff.clone();
     red.graph.n_vars = table.slots.len();
-    let mut intermediates = vec![false; table.slots.len()];
-    for deps in &implicit {
-        for &d in deps {
-            // Orientation entries are derivatives of their own kind, not intermediates.
-            intermediates[d] = implicit.get(d).is_none_or(Vec::is_empty);
-        }
-    }
+    // The angular velocities (orientation entries aside): intermediates of state
+    // selection.
+    let intermediates: Vec<bool> = table
+        .slots
+        .iter()
+        .map(|s| s.order == 0 && angular_velocity.get(s.var).copied().unwrap_or(false))
+        .collect();
     let selection =
         match dummy_derivatives_with_intermediates(&red, n_original, &rank, &intermediates) {
             Ok(s) => s,

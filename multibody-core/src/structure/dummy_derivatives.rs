@@ -213,8 +213,12 @@ fn select_with_companions(
 ) -> Option<Vec<usize>> {
     use crate::hash::HashSet;
     let is_candidate: HashSet<usize> = candidates.iter().copied().collect();
-    let is_intermediate =
-        |v: usize| !is_candidate.contains(&v) && marked.get(v).copied().unwrap_or(false);
+    // An angular velocity that alias elimination merged with a joint's speed is a
+    // derivative (of the joint angle): not an intermediate.
+    let anti = red.antiderivative_var();
+    let is_intermediate = |v: usize| {
+        !is_candidate.contains(&v) && marked.get(v).copied().unwrap_or(false) && anti[v].is_none()
+    };
     let companions_pool: Vec<usize> = (0..counts.len())
         .filter(|&e| counts[e] == level - 1)
         .collect();
@@ -252,9 +256,6 @@ fn select_with_companions(
     let n_intermediate = columns.len();
     columns.extend_from_slice(candidates);
     let kept = select(&rows, &columns, |e| &red.graph.eq_vars[e]);
-    if kept.len() < rows.len() {
-        return None;
-    }
     let chosen: Vec<usize> = kept
         .into_iter()
         .filter(|v| is_candidate.contains(v))
