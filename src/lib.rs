@@ -41,12 +41,15 @@ pub mod frames;
 pub mod functions;
 pub mod interfaces;
 pub mod joints;
+pub mod loops;
+mod mechanism;
 pub mod parts;
 pub mod rotational;
 pub mod sensors;
 pub mod translational;
 pub mod world;
 
+pub use mechanism::{structural_simplify, structural_simplify_with};
 pub use multibody_core::codegen;
 pub use multibody_core::expr::Expr;
 pub use multibody_core::model::{
@@ -55,8 +58,7 @@ pub use multibody_core::model::{
 };
 pub use multibody_core::plot::{PlotOptions, plot, plot_figure};
 pub use multibody_core::simplify::{
-    LinearBlockLimits, SimplifiedSystem, SimplifyOptions, Statistics, structural_simplify,
-    structural_simplify_with,
+    LinearBlockLimits, PlanarLoops, SimplifiedSystem, SimplifyOptions, Statistics,
 };
 pub use multibody_core::solve::{
     DaeProblem, IdaStats, InitReport, LinearSolverChoice, Solution, SolverOptions,
@@ -82,8 +84,8 @@ pub mod __private {
     pub use multibody_core::expr::Expr;
     pub use multibody_core::model::{
         Component, Connector, ConnectorHandle, Parameter, ParameterType, PathId, Signal, Signal3,
-        StateSelect, System, TypedComponent, VarKind, Variable, VariableType, declare_signal,
-        declare_signal3, member, signal_at, signal3_at,
+        StateSelect, StructuralValue, System, TypedComponent, VarKind, Variable, VariableType,
+        declare_signal, declare_signal3, member, signal_at, signal3_at,
     };
 
     /// The functions equations use (`der`, `sin`, ...).

@@ -208,3 +208,105 @@ fn the_spatial_loop_cut_anywhere_has_the_same_unknowns() {
         );
     }
 }
+
+/// The planar four-bar with `j4` a plain revolute joint: five parallel revolute joints.
+fn planar_fourbar_without_loop_constraint() -> System {
+    use multibody::joints::Revolute;
+    use multibody::parts::BodyShape;
+    use multibody::rotational::Damper;
+    use multibody::world::World;
+    let l = 1.5;
+    system! {
+        name: "fourbar";
+        world = World::default();
+        j1 = Revolute { axisflange: true };
+        j2 = Revolute { axisflange: true };
+        j3 = Revolute::default();
+        j4 = Revolute::default();
+        j5 = Revolute::default();
+        b1 = BodyShape { m: 1.0, r: [l, 0.0, 0.0], radius: 0.03 };
+        b2 = BodyShape { m: 1.0, r: [0.0, l, 0.0], radius: 0.03 };
+        b3 = BodyShape { m: 1.0, r: [-l, 0.0, 0.0], radius: 0.03 };
+        b4 = BodyShape { m: 1.0, r: [0.0, -l, 0.0], radius: 0.03 };
+        damper1 = Damper { d: 0.1 };
+        damper2 = Damper { d: 0.1 };
+        connect(world.frame_b, j1.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+        connect(b1.frame_b, j2.frame_a);
+        connect(j2.frame_b, b2.frame_a);
+        connect(b2.frame_b, j3.frame_a);
+        connect(j3.frame_b, b3.frame_a);
+        connect(b3.frame_b, j4.frame_a);
+        connect(j4.frame_b, b4.frame_a);
+        connect(b4.frame_b, j5.frame_a);
+        connect(j5.frame_b, world.frame_b);
+        connect(j1.axis, damper1.flange_a);
+        connect(j1.support, damper1.flange_b);
+        connect(j2.axis, damper2.flange_a);
+        connect(j2.support, damper2.flange_b);
+    }
+}
+
+#[test]
+fn planar_loop_of_revolute_joints_is_diagnosed() {
+    let Err(err) = structural_simplify(&planar_fourbar_without_loop_constraint()) else {
+        panic!("a planar loop of revolute joints is singular");
+    };
+    let err = err.to_string();
+    for joint in ["j1", "j2", "j3", "j4", "j5"] {
+        assert!(
+            err.contains(&format!("`{joint}`")),
+            "{joint} not named: {err}"
+        );
+    }
+    assert!(err.contains("RevolutePlanarLoopConstraint"), "{err}");
+}
+
+#[test]
+fn planar_loop_with_redundancy_removed_matches_the_loop_constraint_version() {
+    use multibody::{PlanarLoops, SimplifyOptions, structural_simplify_with};
+    let options = SimplifyOptions {
+        planar_loops: PlanarLoops::RemoveRedundant,
+        ..SimplifyOptions::default()
+    };
+    let automatic =
+        structural_simplify_with(&planar_fourbar_without_loop_constraint(), &options).unwrap();
+    let reference = structural_simplify(&fourbar_example::fourbar()).unwrap();
+    // Both integrated far below the comparison's tolerance (their states differ).
+    let tight = SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_times: Some((1..=100).map(|k| k as f64 * 0.01).collect()),
+        ..SolverOptions::default()
+    };
+    let solve = |ssys: &SimplifiedSystem| {
+        DaeProblem::new(ssys, &[("j1.phi", 0.1)], (0.0, 1.0))
+            .unwrap()
+            .solve(&tight)
+            .unwrap()
+    };
+    let (a, b) = (solve(&automatic), solve(&reference));
+    // j4.phi exists only in the automatic version: the model's variables all stay.
+    assert!(a.get("j4.phi").is_ok());
+    let mut worst: f64 = 0.0;
+    for name in ["j1.phi", "j2.phi", "j3.phi", "j1.w", "j2.w", "j3.w"] {
+        let (x, y) = (a.get(name).unwrap(), b.get(name).unwrap());
+        for (p, q) in x.iter().zip(&y) {
+            worst = worst.max((p - q).abs());
+        }
+    }
+    assert!(worst < 1e-6, "the two versions differ by {worst}");
+}
+
+#[test]
+fn planar_loops_are_found_from_the_geometry_only() {
+    use multibody::loops::planar_loops;
+    let loops = planar_loops(&planar_fourbar_without_loop_constraint());
+    assert_eq!(loops, [["j1", "j2", "j3", "j4", "j5"]]);
+    // Closed by the loop constraint: nothing to report.
+    assert!(planar_loops(&fourbar_example::fourbar()).is_empty());
+    // The spatial four-bar's axes are not parallel.
+    for cut in [None, Some("j5")] {
+        assert!(planar_loops(&fourbar_cutjoint_example::fourbar_with_cut(cut)).is_empty());
+    }
+}

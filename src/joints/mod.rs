@@ -31,3 +31,20 @@ pub(crate) fn unit_axis(n: [f64; 3], what: &str) -> Vec3 {
 /// Default priority of joint coordinates as states (Multibody.jl's default joint
 /// priority; above variables without preference, below an explicit `prefer`).
 pub const JOINT_STATE_PRIORITY: f64 = 3.0;
+
+/// Two unit vectors spanning the plane normal to the unit axis `e` (MSL's choice in
+/// `RevolutePlanarLoopConstraint`): `(ex, ey)` with `ex x ey = e`.
+pub(crate) fn plane_basis(e: Vec3) -> (Vec3, Vec3) {
+    let a = e.as_f64().expect("constant axis");
+    let helper = if a[0].abs() > 0.1 {
+        [0.0, 1.0, 0.0]
+    } else if a[1].abs() > 0.1 {
+        [0.0, 0.0, 1.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let c = e.cross(Vec3::constant(helper)).as_f64().expect("constant");
+    let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    let ey = Vec3::constant([c[0] / l, c[1] / l, c[2] / l]);
+    (ey.cross(e), ey)
+}

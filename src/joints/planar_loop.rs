@@ -1,6 +1,6 @@
 //! The cut joint of planar loops.
 
-use super::unit_axis;
+use super::{plane_basis, unit_axis};
 use crate::frames::{Vec3, relative_rotation, resolve2};
 use crate::interfaces::Frame;
 use crate::prelude::*;
@@ -28,21 +28,7 @@ component! {
         variable f_c: Vec3;
         equation {
             let e = unit_axis(n, "RevolutePlanarLoopConstraint");
-            let e_arr = e.as_f64().expect("constant axis");
-            let nnx = if e_arr[0].abs() > 0.1 {
-                [0.0, 1.0, 0.0]
-            } else if e_arr[1].abs() > 0.1 {
-                [0.0, 0.0, 1.0]
-            } else {
-                [1.0, 0.0, 0.0]
-            };
-            let ey_a = {
-                let c = e.cross(Vec3::constant(nnx));
-                let c = c.as_f64().expect("constant");
-                let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-                Vec3::constant([c[0] / l, c[1] / l, c[2] / l])
-            };
-            let ex_a = ey_a.cross(e);
+            let (ex_a, ey_a) = plane_basis(e);
             let r_rel = relative_rotation(&frame_a.R, &frame_b.R);
             let r_rel_a = resolve2(&frame_a.R, frame_b.r_0 - frame_a.r_0);
             0.0 = ex_a.dot(r_rel_a);

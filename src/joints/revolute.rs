@@ -1,7 +1,9 @@
 //! The revolute joint.
 
-use super::{JOINT_STATE_PRIORITY, unit_axis};
-use crate::frames::{Vec3, absolute_rotation, equality_constraint, planar_rotation, resolve1};
+use super::{JOINT_STATE_PRIORITY, plane_basis, unit_axis};
+use crate::frames::{
+    Vec3, absolute_rotation, equality_constraint, planar_rotation, resolve1, resolve2,
+};
 use crate::interfaces::Frame;
 use crate::prelude::*;
 use crate::rotational;
@@ -25,6 +27,11 @@ component! {
         structural state_priority: f64 = JOINT_STATE_PRIORITY;
         /// The joint is a cut of a kinematic loop.
         structural iscut: bool = false;
+        /// With `iscut`: the joint closes a *planar* loop, so only the position in the
+        /// plane normal to `n` and the rotation about `n` are constrained; the force along
+        /// `n` and the torques across it are zero (what `PlanarLoops::RemoveRedundant`
+        /// sets on one joint of a planar loop).
+        structural planar_cut: bool = false;
         /// Whether the 1-D flanges are meant to be connected (they always exist).
         structural axisflange: bool = false;
         /// Radius when rendered \[m\].
@@ -51,13 +58,26 @@ component! {
             let e = unit_axis(n, "Revolute");
             w = der(phi);
             a = der(w);
-            frame_b.r_0 = frame_a.r_0;
-            if iscut {
+            if iscut && planar_cut {
+                let (ex, ey) = plane_basis(e);
+                let r_rel = planar_rotation(e, phi, w);
+                let r_rel_a = resolve2(&frame_a.R, frame_b.r_0 - frame_a.r_0);
+                0.0 = ex.dot(r_rel_a);
+                0.0 = ey.dot(r_rel_a);
+                0.0 = e.dot(frame_b.f);
+                0.0 = e.dot(equality_constraint(&absolute_rotation(&frame_a.R, &r_rel), &frame_b.R));
+                0.0 = ex.dot(frame_b.t);
+                0.0 = ey.dot(frame_b.t);
+                frame_a.f = -resolve1(&r_rel, frame_b.f);
+                frame_a.t = -resolve1(&r_rel, frame_b.t);
+            } else if iscut {
+                frame_b.r_0 = frame_a.r_0;
                 let r_rel = planar_rotation(e, phi, w);
                 Vec3::zero() = equality_constraint(&absolute_rotation(&frame_a.R, &r_rel), &frame_b.R);
                 frame_a.f = -resolve1(&r_rel, frame_b.f);
                 frame_a.t = -resolve1(&r_rel, frame_b.t);
             } else {
+                frame_b.r_0 = frame_a.r_0;
                 branch(frame_a.R, frame_b.R);
                 if rooted(frame_a.R) {
                     let r_rel = planar_rotation(e, phi, w);

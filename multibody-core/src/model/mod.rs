@@ -14,7 +14,7 @@ pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
-pub use system::{Component, Connection, Equation, System, join_path};
+pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};
 pub use typed::{
     Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,
     TypedComponent, VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,

@@ -77,6 +77,10 @@ pub struct System {
     pub overdetermined: Vec<super::graph::OverdeterminedGroup>,
     /// Roots, potential roots and branches of the virtual connection graph.
     pub graph: Vec<super::graph::GraphDecl>,
+    /// The numeric structural parameters the component was built with (`n`, `r`,
+    /// `radius`, ...; booleans as 0 or 1, an unset `Option` left out), by local name:
+    /// what diagnoses of mechanisms and rendering read.
+    pub structural: Vec<(String, Vec<f64>)>,
 }
 
 /// Joins a path and a local name with a dot (an empty side is left out).
@@ -116,6 +120,7 @@ impl System {
             derivative_rules: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
+            structural: Vec::new(),
         }
     }
 
@@ -206,6 +211,32 @@ impl System {
         self.subsystems.last_mut().expect("just pushed")
     }
 
+    /// Replaces the sub-component named `local` by a fresh instance of `c` (same name
+    /// and path). Returns false when there is no such sub-component.
+    pub fn replace(&mut self, local: &str, c: &dyn Component) -> bool {
+        let Some(k) = self.subsystems.iter().position(|s| s.name == local) else {
+            return false;
+        };
+        let mut sub = System::with_path(
+            local.to_string(),
+            self.full(local),
+            c.type_name(),
+            c.connector_class(),
+        );
+        c.build(&mut sub);
+        self.subsystems[k] = sub;
+        true
+    }
+
+    /// The sub-system at a relative path, mutably.
+    pub fn subsystem_mut(&mut self, local_path: &str) -> Option<&mut System> {
+        let mut cur = self;
+        for part in local_path.split('.') {
+            cur = cur.subsystems.iter_mut().find(|s| s.name == part)?;
+        }
+        Some(cur)
+    }
+
     /// Declares `extends`: builds a partial component's declarations into this same
     /// system (no new name level), as Modelica's `extends PartialCompliant`.
     pub fn extend(&mut self, c: &dyn Component) {
@@ -229,8 +260,61 @@ impl System {
         Some(cur)
     }
 
+    /// Records a structural parameter's value (see [`System::structural`]); `None`
+    /// records nothing.
+    pub fn record_structural(&mut self, name: &str, value: Option<Vec<f64>>) {
+        if let Some(v) = value {
+            self.structural.push((name.to_string(), v));
+        }
+    }
+
+    /// The recorded value of the structural parameter `name` of this system.
+    pub fn structural_value(&self, name: &str) -> Option<&[f64]> {
+        self.structural
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
     /// Whether this system is a connector.
     pub fn is_connector(&self) -> bool {
         self.connector_class.is_some()
+    }
+}
+
+/// A structural parameter value that can be recorded as numbers (see
+/// [`System::structural`]).
+pub trait StructuralValue {
+    /// The value as numbers, `None` when there is nothing to record.
+    fn structural_values(&self) -> Option<Vec<f64>>;
+}
+
+impl StructuralValue for f64 {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(vec![*self])
+    }
+}
+
+impl StructuralValue for bool {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(vec![if *self { 1.0 } else { 0.0 }])
+    }
+}
+
+impl StructuralValue for usize {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(vec![*self as f64])
+    }
+}
+
+impl<const N: usize> StructuralValue for [f64; N] {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(self.to_vec())
+    }
+}
+
+impl<T: StructuralValue> StructuralValue for Option<T> {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        self.as_ref().and_then(StructuralValue::structural_values)
     }
 }

@@ -18,6 +18,23 @@ pub enum SimplifyError {
         /// What this means for the model, when known.
         hint: Option<String>,
     },
+    /// A closed kinematic loop whose revolute joints all have parallel axes: the
+    /// constraint forces along the axes (and the torques across them) cannot be
+    /// determined, so the loop's equations are structurally singular.
+    #[error(
+        "model `{model}`: the kinematic loop through {} is planar (the axes of its revolute \
+         joints are parallel): the cut forces along the axes cannot be computed. Replace one \
+         revolute joint of the loop by RevolutePlanarLoopConstraint, or simplify with \
+         `SimplifyOptions {{ planar_loops: PlanarLoops::RemoveRedundant, .. }}` to remove the \
+         redundant constraints automatically",
+        .joints.iter().map(|j| format!("`{j}`")).collect::<Vec<_>>().join(", ")
+    )]
+    PlanarLoop {
+        /// Model name.
+        model: String,
+        /// The loop's joints, by full path, in loop order.
+        joints: Vec<String>,
+    },
     /// State selection could not honour a hard requirement.
     #[error("model `{model}`: {message}")]
     StateSelection {

@@ -44,6 +44,23 @@ pub struct SimplifyOptions {
     /// `structural_simplify` (default: false; parameters marked `evaluate` are folded
     /// either way).
     pub evaluate_parameters: bool,
+    /// What to do with planar kinematic loops (closed loops whose revolute joints have
+    /// parallel axes), which the `multibody` crate's `structural_simplify_with` detects
+    /// from the mechanism's geometry (default: [`PlanarLoops::Diagnose`]).
+    pub planar_loops: PlanarLoops,
+}
+
+/// Treatment of planar kinematic loops (see [`SimplifyOptions::planar_loops`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum PlanarLoops {
+    /// Report the loop and its joints as an error (the default, as Dymola does).
+    #[default]
+    Diagnose,
+    /// Remove the redundant constraints: one revolute joint of each planar loop becomes
+    /// a planar cut (in-plane position and rotation about the axis constrained; the
+    /// force along the axis and the torques across it zero). The model's variables all
+    /// stay.
+    RemoveRedundant,
 }
 
 /// Simplifies a model with default options: see [`structural_simplify_with`].
