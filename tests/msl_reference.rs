@@ -210,3 +210,48 @@ fn fourbar1_automatic_loop_breaking() {
 fn fourbar1_with_cut_joint() {
     check_fourbar1(true);
 }
+
+/// MSL `Examples.Loops.Fourbar2`: the same loop closed by a `UniversalSpherical` rod
+/// whose length is computed at initialization, with the prismatic coordinate (an
+/// algebraic unknown) fixed at its start value.
+#[test]
+fn fourbar2_universal_spherical() {
+    use multibody::joints::UniversalSpherical;
+    use multibody::parts::BodyCylinder;
+    let model = system! {
+        name: "Fourbar2";
+        world = World::default();
+        j1 = Revolute { n: [1.0, 0.0, 0.0], state_priority: 1000.0 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        b1 = BodyCylinder { r: [0.0, 0.5, 0.1], diameter: Some(0.05) };
+        b2 = BodyCylinder { r: [0.0, 0.2, 0.0], diameter: Some(0.05) };
+        b0 = FixedTranslation { r: [1.2, 0.0, 0.0] };
+        universal_spherical = UniversalSpherical {
+            n1_a: [0.0, 1.0, 0.0],
+            rRod_ia: [-1.0, 0.3, 0.1],
+            compute_rod_length: true
+        };
+        connect(j2.frame_b, b2.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+        connect(j1.frame_a, world.frame_b);
+        connect(b1.frame_b, universal_spherical.frame_b);
+        connect(universal_spherical.frame_a, b2.frame_b);
+        connect(b0.frame_a, world.frame_b);
+        connect(b0.frame_b, j2.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states(), ["j1.phi", "j1.w"]);
+    let start = [("j1.phi", 0.0), ("j1.w", 5.235987755983), ("j2.s", -0.2)];
+    let problem = DaeProblem::new(&ssys, &start, (0.0, 5.0)).unwrap();
+    // The rod closes the loop at s = -0.2 with the length of b3 in Fourbar1.
+    let length = (1.0f64 + 0.09 + 0.01).sqrt();
+    let k = ssys
+        .parameters()
+        .iter()
+        .position(|p| p == "universal_spherical.rodLength")
+        .expect("the rod length is a parameter");
+    let computed = problem.parameter_values()[k];
+    let sol = problem.solve(&options(5.0)).unwrap();
+    assert!((computed - length).abs() < 1e-9, "rod length {computed}");
+    assert_in_tube("Fourbar2", &sol, &["j1.phi", "j1.w"]);
+}

@@ -11,12 +11,14 @@ mod planar_loop;
 mod prismatic;
 mod revolute;
 mod spherical;
+mod universal_spherical;
 
 pub use composite::*;
 pub use planar_loop::*;
 pub use prismatic::*;
 pub use revolute::*;
 pub use spherical::*;
+pub use universal_spherical::*;
 
 use crate::frames::Vec3;
 

@@ -124,7 +124,12 @@ impl FlatSystem {
 
     /// A readable description of an equation for messages.
     pub fn describe(&self, eq: &FlatEquation) -> String {
-        match &eq.origin {
+        Self::describe_origin(&eq.origin)
+    }
+
+    /// A readable description of an equation of the given origin.
+    pub fn describe_origin(origin: &Origin) -> String {
+        match origin {
             Origin::Component { path, equation } => {
                 let at = if path.is_empty() {
                     "model"

@@ -7,6 +7,7 @@ mod error;
 mod flatten;
 mod graph;
 mod system;
+mod text;
 mod typed;
 mod variable;
 
@@ -15,6 +16,7 @@ pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};
+pub use text::EquationText;
 pub use typed::{
     Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,
     TypedComponent, VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,

@@ -16,7 +16,7 @@ use crate::structure::BipartiteGraph;
 use crate::structure::blt::blt;
 use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::maximum_matching;
-use crate::structure::tearing::{TearingEquation, tear};
+use crate::structure::tearing::{TearingEquation, tear_with_priority};
 
 /// Limits deciding where linear blocks are solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,6 +138,10 @@ pub struct Temporaries<'p> {
     /// works (the entries of orientation matrices: they are computed from the joint
     /// coordinates, never iterated on).
     pub never_tear: &'p HashSet<Id>,
+    /// State priority of leaves (absent: 0): among equally good tearing variables the
+    /// higher one is chosen (a loop is iterated on a joint coordinate rather than on an
+    /// internal vector).
+    pub tear_priority: &'p HashMap<Id, f64>,
 }
 
 impl Temporaries<'_> {
@@ -228,6 +232,7 @@ pub fn causalize(
             );
         }
     }
+    super::reroot::reroot_iteration_variables(arena, &mut out, temps.tear_priority, temps.params);
     Ok(out)
 }
 
@@ -296,7 +301,11 @@ fn solve_block(
         teqs.push(TearingEquation { vars: tv });
     }
     let tearable: Vec<bool> = vars.iter().map(|v| !temps.never_tear.contains(v)).collect();
-    let t = tear(k, &teqs, Some(&tearable));
+    let priority: Vec<f64> = vars
+        .iter()
+        .map(|v| temps.tear_priority.get(v).copied().unwrap_or(0.0))
+        .collect();
+    let t = tear_with_priority(k, &teqs, Some(&tearable), Some(&priority));
     let torn: Vec<Id> = t.torn_vars.iter().map(|&j| vars[j]).collect();
     let assignments: Vec<(usize, Id)> = t.assignments.iter().map(|&(e, j)| (e, vars[j])).collect();
     if linear {

@@ -11,6 +11,7 @@ pub mod causalize;
 mod error;
 mod evaluate;
 pub(crate) mod reduce;
+mod reroot;
 mod system;
 
 #[cfg(test)]
@@ -27,7 +28,7 @@ pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
 use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, Node};
-use crate::model::{System, check_balance, flatten};
+use crate::model::{EquationText, System, check_balance, flatten};
 
 use causalize::{Temporaries, causalize};
 use reduce::{ReduceInput, reduce};
@@ -110,12 +111,12 @@ pub fn structural_simplify_with(
     let kept_eqs: Vec<usize> = (0..flat.equations.len())
         .filter(|&e| !aliases.removed[e])
         .collect();
-    let equations: Vec<(Id, String)> = kept_eqs
+    let equations: Vec<(Id, EquationText)> = kept_eqs
         .iter()
         .map(|&e| {
             (
                 flat.equations[e].residual,
-                flat.describe(&flat.equations[e]),
+                EquationText::of(&flat.equations[e].origin),
             )
         })
         .collect();
@@ -176,10 +177,18 @@ pub fn structural_simplify_with(
         .iter()
         .map(|&(x, _)| flat.arena.var(x))
         .collect();
+    let tear_priority: HashMap<Id, f64> = flat
+        .variables
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.state_priority != 0.0)
+        .map(|(i, v)| (flat.arena.var(i as u32), v.state_priority))
+        .collect();
     let mut temps = Temporaries {
         next: nv as u32,
         params: &default_params,
         never_tear: &never_tear,
+        tear_priority: &tear_priority,
     };
     let schedule = causalize(
         &mut flat.arena,
@@ -196,7 +205,7 @@ pub fn structural_simplify_with(
                 .iter()
                 .map(|&e| {
                     reduce::with_reduced_form(
-                        &reduced.equations[e].text,
+                        &reduced.equations[e].text.to_string(),
                         &flat.arena,
                         reduced.equations[e].residual,
                         &show,

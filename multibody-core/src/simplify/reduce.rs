@@ -5,6 +5,7 @@
 use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, Node};
+use crate::model::EquationText;
 use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{
     SelectionError, StateRank, dummy_derivatives_with_intermediates,
@@ -32,7 +33,7 @@ pub struct ReducedEquation {
     /// The residual (`= 0`).
     pub residual: Id,
     /// How it reads in messages.
-    pub text: String,
+    pub text: EquationText,
 }
 
 /// The index-reduced system with its state selection.
@@ -134,7 +135,7 @@ pub(crate) struct ReduceInput<'a> {
     /// Derivative aliases `der(x) -> v`.
     pub derivative_map: &'a HashMap<Id, Id>,
     /// Equations: residual and text.
-    pub equations: Vec<(Id, String)>,
+    pub equations: Vec<(Id, EquationText)>,
     /// Per equation: whether it defines a variable with a derivative rule.
     pub definitions: Vec<bool>,
     /// Per flat variable: whether it is an angular velocity (a variable that the
@@ -218,7 +219,14 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                 model,
                 equations
                     .iter()
-                    .map(|&e| with_reduced_form(&eqs[e].text, table.arena, eqs[e].residual, show))
+                    .map(|&e| {
+                        with_reduced_form(
+                            &eqs[e].text.to_string(),
+                            table.arena,
+                            eqs[e].residual,
+                            show,
+                        )
+                    })
                     .collect(),
                 names(&overdetermined),
                 names(&undetermined),
@@ -241,7 +249,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         let src = anti_eq[e].expect("a new equation is a derivative");
         let d = table.arena.time_derivative(eqs[src].residual);
         let d = canonical(table.arena, d, derivative_map);
-        let text = format!("d/dt[{}]", eqs[src].text);
+        let text = eqs[src].text.derivative();
         let before = table.slots.len();
         let _ = incidence(&mut table, d);
         if table.slots.len() != before {
@@ -282,7 +290,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
             }) => {
                 return Err(SimplifyError::singular(
                     model,
-                    equations.iter().map(|&e| eqs[e].text.clone()).collect(),
+                    equations.iter().map(|&e| eqs[e].text.to_string()).collect(),
                     candidates
                         .iter()
                         .map(|&v| table.slots[v].name.clone())

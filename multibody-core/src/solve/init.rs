@@ -13,6 +13,7 @@
 use std::collections::VecDeque;
 
 use crate::hash::{HashMap, HashSet};
+use crate::model::EquationText;
 
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, Node};
@@ -71,7 +72,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(k, &l)| (l, k)).collect();
 
     // Mandatory equations.
-    let mut eqs: Vec<(Id, String)> = sys
+    let mut eqs: Vec<(Id, EquationText)> = sys
         .equations
         .iter()
         .map(|e| (e.residual, e.text.clone()))
@@ -89,7 +90,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
                 });
             }
         }
-        eqs.push((*r, format!("initial equation {text}")));
+        eqs.push((*r, EquationText::plain(format!("initial equation {text}"))));
     }
     let mut implied: Vec<(usize, Id)> = Vec::new();
     for i in 0..nv {
@@ -106,7 +107,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             continue;
         }
         let r = arena.sub(value, start_leaf[i]);
-        eqs.push((r, format!("fixed start value of {}", sys.variables[i].name)));
+        eqs.push((
+            r,
+            EquationText::plain(format!("fixed start value of {}", sys.variables[i].name)),
+        ));
     }
 
     // Structure: mandatory equations must be matchable.
@@ -131,7 +135,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         };
         return Err(InitError::OverDetermined {
             model,
-            equations: list.iter().map(|&e| eqs[e].1.clone()).collect(),
+            equations: list.iter().map(|&e| eqs[e].1.to_string()).collect(),
         });
     }
     let mut var_to_eq = m.var_to_eq.clone();
@@ -192,7 +196,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             } else {
                 slot.leaf
             };
-            eqs.push((r, format!("assumed start value of {}", slot.name)));
+            eqs.push((
+                r,
+                EquationText::plain(format!("assumed start value of {}", slot.name)),
+            ));
             assumed.push((slot.name.clone(), value));
             deficiency -= 1;
         } else {
@@ -221,10 +228,19 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let mut known: Vec<f64> = input.params.clone();
     known.extend(input.starts.iter().map(|s| s.unwrap_or(0.0)));
     let never_tear = HashSet::default();
+    // Slots (the variables themselves, not their derivatives) rank as tearing and
+    // iteration variables by their state priority.
+    let tear_priority: HashMap<Id, f64> = sys
+        .slots
+        .iter()
+        .filter(|s| s.order == 0 && sys.variables[s.var].state_priority != 0.0)
+        .map(|s| (s.leaf, sys.variables[s.var].state_priority))
+        .collect();
     let mut temps = Temporaries {
         next: sys.next_temporary,
         params: &known,
         never_tear: &never_tear,
+        tear_priority: &tear_priority,
     };
     let schedule = causalize(
         &mut arena,
@@ -235,7 +251,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     )
     .map_err(|s| InitError::OverDetermined {
         model: model.clone(),
-        equations: s.over_equations.iter().map(|&e| eqs[e].1.clone()).collect(),
+        equations: s
+            .over_equations
+            .iter()
+            .map(|&e| eqs[e].1.to_string())
+            .collect(),
     })?;
     let rows: Vec<Row> = schedule
         .residuals
@@ -289,7 +309,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         let residuals = worst
             .iter()
             .take(6)
-            .map(|&(k, r)| (eqs[schedule.residuals[k].1].1.clone(), r.abs()))
+            .map(|&(k, r)| (eqs[schedule.residuals[k].1].1.to_string(), r.abs()))
             .collect();
         let variables = schedule
             .iteration

@@ -1,0 +1,108 @@
+//! The universal-spherical rod: a massless rod with a universal joint at one end and a
+//! spherical joint at the other, one length constraint that closes a loop analytically.
+
+use crate::frames::{
+    Mat3, Orientation, Vec3, absolute_rotation, resolve_relative, resolve1, resolve2,
+};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+
+fn normalized(v: [f64; 3], what: &str) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    assert!(l > 1e-12, "UniversalSpherical: {what} must not be zero");
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+component! {
+    /// A massless rod from `frame_a` to `frame_b`, with a universal joint at `frame_a`
+    /// (first axis `n1_a` fixed in `frame_a`, second axis across the rod) and a spherical
+    /// joint at `frame_b` (MSL `Joints.UniversalSpherical`). It imposes one constraint,
+    /// the rod length, solved by tearing on the coordinate of the loop it closes instead
+    /// of a whole chain of joint angles. It is no branch towards `frame_b` (a loop closes
+    /// there); `frame_ia`, fixed in the rod at `frame_a`'s origin, takes its orientation
+    /// from `frame_a`, which must be on the side of the root. The rod length is
+    /// `|rRod_ia|`, or with `compute_rod_length` computed at initialization from the
+    /// loop (then another coordinate of the loop must be fixed, `rRod_ia` giving only the
+    /// direction). The universal joint's second axis must not become parallel to `n1_a`.
+    #[type_name = "MultiBody.Joints.UniversalSpherical"]
+    pub struct UniversalSpherical {
+        /// First axis of the universal joint, fixed in `frame_a`.
+        structural n1_a: [f64; 3] = [0.0, 0.0, 1.0];
+        /// Vector from `frame_a` to `frame_b` in the rod's frame `frame_ia` (when all
+        /// angles are zero, `frame_ia` coincides with `frame_a`) \[m\].
+        structural rRod_ia: [f64; 3] = [1.0, 0.0, 0.0];
+        /// Compute the rod length at initialization instead of taking `|rRod_ia|`.
+        structural compute_rod_length: bool = false;
+        /// Diameter of the spheres when rendered \[m\].
+        structural sphere_diameter: f64 = 0.1;
+        /// Diameter of the rod when rendered \[m\].
+        structural rod_diameter: f64 = 0.05;
+        /// Frame of the universal joint's end.
+        connector frame_a: Frame;
+        /// Frame of the spherical joint's end.
+        connector frame_b: Frame;
+        /// Frame fixed in the rod at the origin of `frame_a`.
+        connector frame_ia: Frame;
+        /// Length of the rod \[m\], computed at initialization: `|rRod_ia|`, or with
+        /// `compute_rod_length` from the loop (the default is the guess).
+        parameter rodLength(fixed = false): f64 = 1.0;
+        /// Force in the rod, positive when it is pressed \[N\].
+        variable f_rod: Real;
+        initial_equation {
+            if !compute_rod_length {
+                rodLength = (rRod_ia[0] * rRod_ia[0] + rRod_ia[1] * rRod_ia[1] + rRod_ia[2] * rRod_ia[2]).sqrt();
+            }
+        }
+        equation {
+            let e_rod_ia = normalized(rRod_ia, "rRod_ia");
+            let e2_ia = normalized(cross(n1_a, e_rod_ia), "n1_a x rRod_ia");
+            let e3_ia = cross(e_rod_ia, e2_ia);
+            let n1 = Vec3::constant(n1_a);
+            // The rod from frame_a to frame_b, resolved in the world.
+            let rRod_0 = frame_b.r_0 - frame_a.r_0;
+            0.0 = rRod_0.dot(rRod_0) - rodLength * rodLength;
+            let r_rod_a = resolve2(&frame_a.R, rRod_0);
+            let e_rod_a = r_rod_a.scale(1.0 / rodLength);
+            let n2_a = n1.cross(e_rod_a);
+            let length_n2_a = n2_a.dot(n2_a).sqrt();
+            let e2_a = n2_a.scale(1.0 / length_n2_a);
+            let e3_a = e_rod_a.cross(e2_a);
+            // d(rRod_a)/dt / rodLength, through frame_a's angular velocity.
+            let der_r_rod_a_l = (resolve2(&frame_a.R, rRod_0.der()) - frame_a.R.w.cross(r_rod_a))
+                .scale(1.0 / rodLength);
+            let w_rel_ia1 = Vec3::new(
+                e3_a.dot(n1.cross(der_r_rod_a_l)) / length_n2_a,
+                -e3_a.dot(der_r_rod_a_l),
+                e2_a.dot(der_r_rod_a_l),
+            );
+            // frame_a -> rod frame (rows e_rod_a, e2_a, e3_a) -> frame_ia (constant).
+            let rows = Mat3([e_rod_a.to_array(), e2_a.to_array(), e3_a.to_array()]);
+            let columns = Mat3::constant([
+                [e_rod_ia[0], e2_ia[0], e3_ia[0]],
+                [e_rod_ia[1], e2_ia[1], e3_ia[1]],
+                [e_rod_ia[2], e2_ia[2], e3_ia[2]],
+            ]);
+            let r_rel_ia = Orientation::new(columns.mul_mat(rows), columns.mul_vec(w_rel_ia1));
+            frame_ia.r_0 = frame_a.r_0;
+            branch(frame_a.R, frame_ia.R);
+            frame_ia.R = absolute_rotation(&frame_a.R, &r_rel_ia);
+            let f_ia_a = resolve1(&r_rel_ia, frame_ia.f);
+            let t_ia_a = resolve1(&r_rel_ia, frame_ia.t);
+            let f_b_a1 = e2_a.scale(-n1.dot(t_ia_a) / (rodLength * n1.dot(e3_a)))
+                + e3_a.scale(e2_a.dot(t_ia_a) / rodLength);
+            let f_b_a = f_b_a1 - e_rod_a.scale(f_rod);
+            frame_b.f = resolve_relative(f_b_a, &frame_a.R, &frame_b.R);
+            frame_b.t = Vec3::zero();
+            Vec3::zero() = frame_a.f + f_b_a + f_ia_a;
+            Vec3::zero() = frame_a.t + t_ia_a + r_rod_a.cross(f_b_a);
+        }
+    }
+}
