@@ -12,6 +12,7 @@ mod linsol;
 mod newton;
 mod options;
 mod problem;
+mod project;
 mod solution;
 
 pub use error::{InitError, SolutionError, SolveError};

@@ -41,6 +41,12 @@ pub struct SolverOptions {
     pub suppress_alg: bool,
     /// The linear solver (default [`LinearSolverChoice::Auto`]).
     pub linear_solver: LinearSolverChoice,
+    /// Solve the algebraic unknowns of every reported point again from the purely
+    /// algebraic equations (loop closures, rod lengths) by Newton, with the states as
+    /// reported, so constraints hold to round-off at the outputs rather than to the
+    /// integrator's tolerance; the integration is not affected (default true; skipped
+    /// for more than 64 algebraic unknowns).
+    pub project_outputs: bool,
 }
 
 impl Default for SolverOptions {
@@ -54,6 +60,7 @@ impl Default for SolverOptions {
             max_steps: 500_000,
             suppress_alg: true,
             linear_solver: LinearSolverChoice::Auto,
+            project_outputs: true,
         }
     }
 }

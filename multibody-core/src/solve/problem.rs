@@ -333,6 +333,23 @@ impl<'a> DaeProblem<'a> {
             flag: e.flag.clone(),
             message: e.message.clone(),
         })?;
+        if options.project_outputs {
+            let n = self.u0.len();
+            let mut plain = CompiledFunctions::new(c, &self.params, false);
+            let found = super::project::Projection::new(
+                &mut plain,
+                &sys.mass_matrix_diagonal,
+                self.tspan.0,
+                &self.u0,
+                &self.up0,
+            );
+            if let Some(mut projection) = found {
+                for (k, &t) in t_out.iter().enumerate() {
+                    let span = k * n..(k + 1) * n;
+                    projection.apply(&mut plain, t, &mut u_out[span.clone()], &up_out[span]);
+                }
+            }
+        }
         Ok(Solution::new(
             sys.name.clone(),
             Arc::new(c.observed.clone()),
