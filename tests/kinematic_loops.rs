@@ -347,3 +347,49 @@ fn analytic_fourbar_iterates_on_the_prismatic_coordinate() {
         );
     }
 }
+
+#[test]
+fn a_loop_that_cannot_close_names_its_joints_and_asks_for_guesses() {
+    use multibody::joints::{Revolute, RevolutePlanarLoopConstraint};
+    use multibody::parts::BodyShape;
+    use multibody::world::World;
+    // b3 and b4 together reach 1 m from the origin; with j1 and j2 at 0 the end of b2 is
+    // 2.1 m away: no configuration closes the loop.
+    let model = system! {
+        name: "short_fourbar";
+        world = World::default();
+        j1 = Revolute::default();
+        j2 = Revolute::default();
+        j3 = Revolute::default();
+        j4 = RevolutePlanarLoopConstraint::default();
+        j5 = Revolute::default();
+        b1 = BodyShape { r: [1.5, 0.0, 0.0] };
+        b2 = BodyShape { r: [0.0, 1.5, 0.0] };
+        b3 = BodyShape { r: [-0.5, 0.0, 0.0] };
+        b4 = BodyShape { r: [0.0, -0.5, 0.0] };
+        connect(world.frame_b, j1.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+        connect(b1.frame_b, j2.frame_a);
+        connect(j2.frame_b, b2.frame_a);
+        connect(b2.frame_b, j3.frame_a);
+        connect(j3.frame_b, b3.frame_a);
+        connect(b3.frame_b, j4.frame_a);
+        connect(j4.frame_b, b4.frame_a);
+        connect(b4.frame_b, j5.frame_a);
+        connect(j5.frame_b, world.frame_b);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let start = [
+        ("j1.phi", 0.0),
+        ("j2.phi", 0.0),
+        ("j1.w", 0.0),
+        ("j2.w", 0.0),
+    ];
+    let Err(err) = DaeProblem::new(&ssys, &start, (0.0, 1.0)) else {
+        panic!("the loop cannot close");
+    };
+    let err = err.to_string();
+    assert!(err.contains("did not converge"), "{err}");
+    assert!(err.contains("`j3`, `j5`"), "{err}");
+    assert!(err.contains("new_with_guesses"), "{err}");
+}

@@ -114,10 +114,23 @@ fn newton_message(
                 .collect::<Vec<_>>()
                 .join(", ")
         ));
-        m.push_str(
-            "\n  give start values closer to a consistent configuration for these variables \
-             (as guesses: DaeProblem::new_with_guesses)",
-        );
+        let mut components: Vec<&str> = variables
+            .iter()
+            .map(|(n, _)| n.rsplit_once('.').map_or(n.as_str(), |(path, _)| path))
+            .collect();
+        components.dedup();
+        m.push_str(&format!(
+            "\n  the coordinates of {} did not converge: give start values closer to a \
+             consistent configuration for them as guesses \
+             (DaeProblem::new_with_guesses(&ssys, values, &[(\"{}\", ...)], tspan)), or check \
+             that the fixed values leave the mechanism a configuration at all",
+            components
+                .iter()
+                .map(|c| format!("`{c}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            variables[0].0
+        ));
     }
     m
 }
