@@ -1,7 +1,8 @@
 //! MSL's `Examples.Elementary.DoublePendulum`: two boxes on revolute joints, the first
 //! joint damped.
 //!
-//! `cargo run --release --example double_pendulum` writes `double_pendulum.png`.
+//! `cargo run --release --example double_pendulum` writes `double_pendulum.png` and
+//! `double_pendulum.gif`.
 
 use multibody::joints::Revolute;
 use multibody::parts::BodyBox;
@@ -48,5 +49,13 @@ fn main() -> Result<(), multibody::Error> {
         &PlotOptions::default(),
     )?;
     println!("wrote double_pendulum.png");
+    let options = RenderOptions {
+        camera: [1.2, 0.3, 3.0],
+        look_at: [0.0, -0.4, 0.0],
+        times: Some((0..=150).map(|k| 0.02 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&double_pendulum(), &sol, "double_pendulum.gif", &options)?;
+    println!("wrote double_pendulum.gif");
     Ok(())
 }

@@ -5,7 +5,7 @@
 //! on the way.
 //!
 //! `cargo run --release --example fourbar` writes `fourbar.png` (angles and angular
-//! velocities of j1..j3).
+//! velocities of j1..j3) and `fourbar.gif` (its animation).
 
 use multibody::joints::{Revolute, RevolutePlanarLoopConstraint};
 use multibody::parts::BodyShape;
@@ -67,5 +67,14 @@ fn main() -> Result<(), multibody::Error> {
         &PlotOptions::default(),
     )?;
     println!("wrote fourbar.png");
+    let options = RenderOptions {
+        camera: [4.0, -1.0, 4.0],
+        look_at: [0.0, -1.0, 0.0],
+        fov: 60.0,
+        times: Some((0..=200).map(|k| 0.05 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&fourbar(), &sol, "fourbar.gif", &options)?;
+    println!("wrote fourbar.gif");
     Ok(())
 }

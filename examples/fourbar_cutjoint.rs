@@ -4,7 +4,7 @@
 //! state priority: its angle alone determines the configuration everywhere.
 //!
 //! `cargo run --release --example fourbar_cutjoint` writes `fourbar_cutjoint.png`
-//! (`j2.s`, the prismatic coordinate).
+//! (`j2.s`, the prismatic coordinate) and `fourbar_cutjoint.gif` (its animation).
 
 use multibody::joints::{Prismatic, Revolute};
 use multibody::parts::{BodyShape, FixedTranslation};
@@ -58,5 +58,13 @@ fn main() -> Result<(), multibody::Error> {
     println!("{:?}", sol.statistics());
     plot(&sol, &["j2.s"], "fourbar_cutjoint.png")?;
     println!("wrote fourbar_cutjoint.png");
+    let options = RenderOptions {
+        camera: [2.2, 1.2, 2.2],
+        look_at: [0.6, 0.2, 0.0],
+        times: Some((0..=143).map(|k| 0.01 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&fourbar_cutjoint(), &sol, "fourbar_cutjoint.gif", &options)?;
+    println!("wrote fourbar_cutjoint.gif");
     Ok(())
 }

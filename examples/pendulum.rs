@@ -1,7 +1,7 @@
 //! MSL's `Examples.Elementary.Pendulum`: a body swinging on a revolute joint with a
 //! rotational damper between the joint's support and axis.
 //!
-//! `cargo run --release --example pendulum` writes `pendulum.png`.
+//! `cargo run --release --example pendulum` writes `pendulum.png` and `pendulum.gif`.
 
 use multibody::joints::Revolute;
 use multibody::parts::Body;
@@ -38,5 +38,13 @@ fn main() -> Result<(), multibody::Error> {
         &PlotOptions::default(),
     )?;
     println!("wrote pendulum.png");
+    let options = RenderOptions {
+        camera: [0.8, 0.3, 1.8],
+        look_at: [0.0, -0.25, 0.0],
+        times: Some((0..=100).map(|k| 0.05 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&pendulum(), &sol, "pendulum.gif", &options)?;
+    println!("wrote pendulum.gif");
     Ok(())
 }

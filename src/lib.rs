@@ -44,6 +44,7 @@ pub mod joints;
 pub mod loops;
 mod mechanism;
 pub mod parts;
+pub mod render;
 pub mod rotational;
 pub mod sensors;
 pub mod translational;
@@ -71,6 +72,7 @@ pub use multibody_macros::{component, connector, system};
 pub mod prelude {
     pub use crate::frames::{Mat3, Orientation, Vec3};
     pub use crate::functions::*;
+    pub use crate::render::{RenderOptions, render};
     pub use crate::{
         Component, ConnectorHandle, DaeProblem, Expr, PlotOptions, Real, Signal, SimplifiedSystem,
         Solution, SolverOptions, StateSelect, System, TypedComponent, Variable, component,

@@ -294,6 +294,7 @@ pub fn remove_planar_redundancy(model: &System, loops: &[Vec<String>]) -> System
             axisflange: flag(old, "axisflange"),
             radius: scalar("radius", default.radius),
             length: scalar("length", default.length),
+            ..default
         };
         let (parent_path, local) = match chosen.rsplit_once('.') {
             Some((p, l)) => (Some(p), l),

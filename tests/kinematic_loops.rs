@@ -112,6 +112,14 @@ fn planar_fourbar_dissipates_energy_and_keeps_its_loop_closed() {
 fn cut_joint_fourbar_has_j1_as_its_only_states() {
     let ssys = structural_simplify(&fourbar_cutjoint_example::fourbar_cutjoint()).unwrap();
     assert_eq!(ssys.states(), ["j1.phi", "j1.w"]);
+    // Static selection in a loop: said, with the states it keeps.
+    assert!(
+        ssys.warnings()
+            .iter()
+            .any(|w| w.contains("static state selection") && w.contains("states kept are j1.w")),
+        "{:?}",
+        ssys.warnings()
+    );
     let u = ssys.unknowns();
     // Multibody.jl: 8 unknowns (2 states + 6 joint angles). Tearing here also solves
     // j2.s from the closure equation that is linear in it, so 7 remain (Dymola's

@@ -288,6 +288,8 @@ fn undamped_double_pendulum_keeps_its_energy() {
     let ssys = structural_simplify(&model).unwrap();
     assert_eq!(ssys.states(), ["rev1.phi", "rev2.phi", "rev1.w", "rev2.w"]);
     assert_no_orientation_unknowns(&ssys);
+    // A tree's joint coordinates are valid states everywhere: no warning.
+    assert!(ssys.warnings().is_empty(), "{:?}", ssys.warnings());
     let sol = DaeProblem::new(&ssys, &[("rev1.phi", 1.0), ("rev2.phi", -0.5)], (0.0, 10.0))
         .unwrap()
         .solve(&tight())

@@ -48,6 +48,8 @@ component! {
         parameter s_unstretched: f64 = 0.0;
         /// Coil radius when rendered \[m\].
         structural radius: f64 = 0.05;
+        /// Colour when rendered, RGB in 0..1 (MSL's spring colour, blue).
+        structural color: [f64; 3] = crate::render::SPRING_COLOR;
         extends PartialLineForce { frame_a, frame_b, length, f };
         equation {
             f = c * (length - s_unstretched);
@@ -82,6 +84,8 @@ component! {
         parameter d: f64 = 0.0;
         /// Coil radius when rendered \[m\].
         structural radius: f64 = 0.05;
+        /// Colour when rendered, RGB in 0..1 (MSL's spring colour, blue).
+        structural color: [f64; 3] = crate::render::SPRING_COLOR;
         extends PartialLineForce { frame_a, frame_b, s, f };
         equation {
             f = c * (s - s_unstretched) + d * der(s);

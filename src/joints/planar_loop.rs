@@ -20,6 +20,8 @@ component! {
         structural radius: f64 = 0.05;
         /// Length when rendered \[m\].
         structural length: f64 = 0.1;
+        /// Colour when rendered, RGB in 0..1 (MSL's joint colour, red).
+        structural color: [f64; 3] = crate::render::JOINT_COLOR;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.

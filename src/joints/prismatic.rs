@@ -28,6 +28,8 @@ component! {
         structural axisflange: bool = false;
         /// Width of the box when rendered \[m\].
         structural width: f64 = 0.05;
+        /// Colour when rendered, RGB in 0..1 (MSL's joint colour, red).
+        structural color: [f64; 3] = crate::render::JOINT_COLOR;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.

@@ -50,6 +50,8 @@ component! {
         structural sequence: [usize; 3] = [1, 2, 3];
         /// Radius when rendered \[m\].
         structural radius: f64 = 0.05;
+        /// Colour when rendered, RGB in 0..1 (MSL's joint colour, red).
+        structural color: [f64; 3] = crate::render::JOINT_COLOR;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.

@@ -48,6 +48,8 @@ component! {
         structural position_state_priority: f64 = StateSelect::Avoid.priority();
         /// Radius of the sphere drawn at the centre of mass \[m\] (0 hides it).
         structural radius: f64 = 0.05;
+        /// Colour of the sphere when rendered, RGB in 0..1 (MSL's body colour).
+        structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// The frame the body is fixed to.
         connector frame_a: Frame;
         /// Position of `frame_a`, resolved in world \[m\].

@@ -32,6 +32,8 @@ component! {
         parameter r: [f64; 3] = [0.0, 0.0, 0.0];
         /// Radius when rendered \[m\] (0 hides it).
         structural radius: f64 = 0.02;
+        /// Colour when rendered, RGB in 0..1 (MSL's rod colour, grey).
+        structural color: [f64; 3] = crate::render::ROD_COLOR;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.

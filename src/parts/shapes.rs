@@ -122,12 +122,14 @@ component! {
         structural orientation_states: OrientationStates = OrientationStates::Cardan;
         /// Radius when rendered \[m\] (0 hides it).
         structural radius: f64 = 0.02;
+        /// Colour when rendered, RGB in 0..1 (MSL's body colour).
+        structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// First frame (the body's).
         connector frame_a: Frame;
         /// Second frame, `r` from `frame_a`.
         connector frame_b: Frame;
         /// The rigid translation from `frame_a` to `frame_b`.
-        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: self.radius };
+        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: self.radius, color: self.color };
         /// The mass, at `frame_a`.
         component body: Body = Body {
             m: self.m,
@@ -168,6 +170,8 @@ component! {
         structural inner_height: Option<f64> = None;
         /// Direction of the width, resolved in `frame_a`.
         structural width_direction: [f64; 3] = [0.0, 1.0, 0.0];
+        /// Colour when rendered, RGB in 0..1 (MSL's body colour).
+        structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// Density \[kg/m3\] (steel).
         structural density: f64 = 7700.0;
         /// Orientation states if the body is the root of its mechanism.
@@ -177,7 +181,7 @@ component! {
         /// Second frame.
         connector frame_b: Frame;
         /// The rigid translation from `frame_a` to `frame_b`.
-        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0 };
+        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0, color: self.color };
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {
@@ -216,6 +220,8 @@ component! {
         structural diameter: Option<f64> = None;
         /// Inner diameter \[m\] (a tube).
         structural inner_diameter: f64 = 0.0;
+        /// Colour when rendered, RGB in 0..1 (MSL's body colour).
+        structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// Density \[kg/m3\] (steel).
         structural density: f64 = 7700.0;
         /// Orientation states if the body is the root of its mechanism.
@@ -225,7 +231,7 @@ component! {
         /// Second frame.
         connector frame_b: Frame;
         /// The rigid translation from `frame_a` to `frame_b`.
-        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0 };
+        component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0, color: self.color };
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {

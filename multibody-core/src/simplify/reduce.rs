@@ -8,7 +8,7 @@ use crate::expr::{Arena, Id, Node};
 use crate::model::EquationText;
 use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{
-    SelectionError, StateRank, dummy_derivatives_with_intermediates,
+    SelectionError, SelectionLevel, StateRank, dummy_derivatives_with_intermediates,
 };
 use crate::structure::pantelides::{StructurallySingular, pantelides_with_implicit};
 
@@ -315,50 +315,50 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         };
     for level in &selection.levels {
         if level.candidates.len() > level.equations.len() {
-            // Does the Jacobian of the level's equations with respect to the chosen
-            // dummies depend on the configuration? Only entries that exist are looked at.
-            let dummy_leaves: HashMap<Id, usize> = level
-                .dummies
-                .iter()
-                .map(|&v| (table.slots[v].leaf, v))
-                .collect();
-            let varying = level.equations.iter().any(|&e| {
-                let r = eqs[e].residual;
-                let present: Vec<Id> = table
-                    .arena
-                    .leaves(r)
-                    .into_iter()
-                    .filter(|l| dummy_leaves.contains_key(l))
-                    .collect();
-                present.into_iter().any(|leaf| {
-                    let c = table.arena.diff(r, leaf);
-                    table
-                        .arena
-                        .leaves(c)
-                        .iter()
-                        .any(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)))
-                })
-            });
+            // Is the Jacobian of the level's equations with respect to the chosen
+            // dummies nonsingular whatever the configuration? It is when it can be
+            // permuted to triangular form with constant, nonzero diagonal entries (the
+            // joint accelerations of a tree); a larger block, a coefficient that depends
+            // on the motion, or dummies reached only through intermediates (a loop)
+            // make the choice depend on the configuration.
+            let varying = configuration_dependent(table.arena, &table.slots, &eqs, level);
             if varying {
-                let names = |vs: &[usize]| {
-                    vs.iter()
-                        .map(|&v| table.slots[v].name.clone())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                };
-                let msg = format!(
-                    "static state selection: {} chosen as dummy derivatives among the \
-                     candidates {} for {}; the choice depends on the configuration and may \
-                     become singular during the motion (give the intended states a higher \
-                     state_priority)",
-                    names(&level.dummies),
-                    names(&level.candidates),
+                // What is decided: which antiderivatives of the candidates stay states.
+                let mut anti = vec![None; var_diff.len()];
+                for (v, d) in var_diff.iter().enumerate() {
+                    if let Some(d) = *d {
+                        anti[d] = Some(v);
+                    }
+                }
+                let decided = |dummy: bool| -> Vec<String> {
                     level
-                        .equations
+                        .candidates
                         .iter()
-                        .map(|&e| format!("`{}`", eqs[e].text))
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                        .filter(|v| level.dummies.contains(v) == dummy)
+                        .filter_map(|&v| anti[v])
+                        .map(|v| table.slots[v].name.clone())
+                        .collect()
+                };
+                let shown: Vec<String> = level
+                    .equations
+                    .iter()
+                    .take(3)
+                    .map(|&e| format!("`{}`", eqs[e].text))
+                    .collect();
+                let more = level.equations.len().saturating_sub(3);
+                let msg = format!(
+                    "static state selection: for {}{} the states kept are {} and {} are \
+                     computed from the constraints; the choice depends on the configuration \
+                     and may become singular during the motion (give the intended states a \
+                     higher state_priority)",
+                    shown.join(", "),
+                    if more > 0 {
+                        format!(" and {more} more equations")
+                    } else {
+                        String::new()
+                    },
+                    crate::names::list(&decided(false), 12),
+                    crate::names::list(&decided(true), 12),
                 );
                 log::warn!("{msg}");
                 warnings.push(msg);
@@ -398,4 +398,47 @@ fn derivative_links(
         }
     }
     (var_diff, implicit)
+}
+
+/// Whether the Jacobian of a selection level's equations with respect to its dummies can
+/// become singular (see the call site).
+fn configuration_dependent(
+    arena: &mut Arena,
+    slots: &[Slot],
+    eqs: &[ReducedEquation],
+    level: &SelectionLevel,
+) -> bool {
+    use crate::structure::blt::blt;
+    use crate::structure::matching::maximum_matching;
+    let local: HashMap<Id, usize> = level
+        .dummies
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| (slots[v].leaf, k))
+        .collect();
+    let mut g = BipartiteGraph::new(level.dummies.len());
+    for &e in &level.equations {
+        let vars: Vec<usize> = arena
+            .leaves(eqs[e].residual)
+            .iter()
+            .filter_map(|l| local.get(l).copied())
+            .collect();
+        g.add_equation(vars);
+    }
+    let m = maximum_matching(&g, None, None);
+    if !m.is_perfect() {
+        return true;
+    }
+    blt(&g, &m).iter().any(|block| {
+        if block.eqs.len() > 1 {
+            return true;
+        }
+        let r = eqs[level.equations[block.eqs[0]]].residual;
+        let c = arena.diff(r, slots[level.dummies[block.vars[0]]].leaf);
+        arena.as_const(c) == Some(0.0)
+            || arena
+                .leaves(c)
+                .iter()
+                .any(|&l| matches!(arena.node(l), Node::Var(_) | Node::Der(_)))
+    })
 }
