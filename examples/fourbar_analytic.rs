@@ -4,7 +4,7 @@
 //! on the prismatic coordinate `j2.s`).
 //!
 //! `cargo run --release --example fourbar_analytic` writes `fourbar_analytic.png`
-//! (`j2.s`).
+//! (`j2.s`) and `fourbar_analytic.gif` (its animation).
 
 use multibody::joints::{Prismatic, Revolute, UniversalSpherical};
 use multibody::parts::{BodyShape, FixedTranslation};
@@ -42,5 +42,13 @@ fn main() -> Result<(), multibody::Error> {
     println!("{:?}", sol.statistics());
     plot(&sol, &["j2.s"], "fourbar_analytic.png")?;
     println!("wrote fourbar_analytic.png");
+    let options = RenderOptions {
+        camera: [2.2, 1.2, 2.2],
+        look_at: [0.6, 0.2, 0.0],
+        times: Some((0..=143).map(|k| 0.01 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&fourbar_analytic(), &sol, "fourbar_analytic.gif", &options)?;
+    println!("wrote fourbar_analytic.gif");
     Ok(())
 }

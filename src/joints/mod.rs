@@ -7,17 +7,29 @@
 //! frame gets its orientation from elsewhere.
 
 mod composite;
+mod joint_rrr;
+mod joint_ssp;
+mod joint_usr;
 mod planar_loop;
 mod prismatic;
+mod prismatic_with_length_constraint;
 mod revolute;
+mod revolute_with_length_constraint;
 mod spherical;
+mod spherical_spherical;
 mod universal_spherical;
 
 pub use composite::*;
+pub use joint_rrr::*;
+pub use joint_ssp::*;
+pub use joint_usr::*;
 pub use planar_loop::*;
 pub use prismatic::*;
+pub use prismatic_with_length_constraint::*;
 pub use revolute::*;
+pub use revolute_with_length_constraint::*;
 pub use spherical::*;
+pub use spherical_spherical::*;
 pub use universal_spherical::*;
 
 use crate::frames::Vec3;

@@ -32,6 +32,11 @@ component! {
     /// `|rRod_ia|`, or with `compute_rod_length` computed at initialization from the
     /// loop (then another coordinate of the loop must be fixed, `rRod_ia` giving only the
     /// direction). The universal joint's second axis must not become parallel to `n1_a`.
+    ///
+    /// Inside assemblies that solve their loop analytically (`JointUSR`), the rod is
+    /// built with `kinematic_constraint: false`: it then imposes no length constraint and
+    /// the assembly binds `constraint_residue` itself (MSL's modifier
+    /// `constraintResidue = rod1.f_rod - f_rod`), to determine the rod force.
     #[type_name = "MultiBody.Joints.UniversalSpherical"]
     pub struct UniversalSpherical {
         /// First axis of the universal joint, fixed in `frame_a`.
@@ -41,6 +46,14 @@ component! {
         structural rRod_ia: [f64; 3] = [1.0, 0.0, 0.0];
         /// Compute the rod length at initialization instead of taking `|rRod_ia|`.
         structural compute_rod_length: bool = false;
+        /// The rod imposes its length as a kinematic constraint on the loop (MSL
+        /// `kinematicConstraint`, default true): `constraint_residue` is bound to
+        /// `|rRod_0|^2 - rodLength^2`. Set it to false only inside assemblies, which then
+        /// bind `constraint_residue` themselves. (MSL writes `rRod_0` through the frames'
+        /// orientation matrices when true, for its tool's index reduction; here positions
+        /// are differentiated directly and `rRod_0 = frame_b.r_0 - frame_a.r_0` in both
+        /// cases.)
+        structural kinematic_constraint: bool = true;
         /// Diameter of the spheres when rendered \[m\].
         structural sphere_diameter: f64 = 0.1;
         /// Diameter of the rod when rendered \[m\].
@@ -56,6 +69,15 @@ component! {
         parameter rodLength(fixed = false): f64 = 1.0;
         /// Force in the rod, positive when it is pressed \[N\].
         variable f_rod: Real;
+        /// The residue whose zero is this rod's one equation: `|rRod_0|^2 - rodLength^2`
+        /// \[m2\] with `kinematic_constraint`, otherwise bound by the enclosing assembly.
+        variable constraint_residue: Real;
+        /// Unit vector along the rod, from `frame_a` to `frame_b`, resolved in `frame_a`.
+        variable eRod_a: Vec3;
+        /// Force at `frame_b` transverse to the rod that balances the torque `frame_ia`
+        /// transmits through the universal joint, resolved in `frame_a` \[N\] (the
+        /// rod's force on `frame_b` is `-f_rod * eRod_a + f_b_a1`).
+        variable f_b_a1: Vec3;
         initial_equation {
             if !compute_rod_length {
                 rodLength = (rRod_ia[0] * rRod_ia[0] + rRod_ia[1] * rRod_ia[1] + rRod_ia[2] * rRod_ia[2]).sqrt();
@@ -68,9 +90,13 @@ component! {
             let n1 = Vec3::constant(n1_a);
             // The rod from frame_a to frame_b, resolved in the world.
             let rRod_0 = frame_b.r_0 - frame_a.r_0;
-            0.0 = rRod_0.dot(rRod_0) - rodLength * rodLength;
+            0.0 = constraint_residue;
+            if kinematic_constraint {
+                constraint_residue = rRod_0.dot(rRod_0) - rodLength * rodLength;
+            }
             let r_rod_a = resolve2(&frame_a.R, rRod_0);
-            let e_rod_a = r_rod_a.scale(1.0 / rodLength);
+            eRod_a = r_rod_a.scale(1.0 / rodLength);
+            let e_rod_a = eRod_a;
             let n2_a = n1.cross(e_rod_a);
             let length_n2_a = n2_a.dot(n2_a).sqrt();
             let e2_a = n2_a.scale(1.0 / length_n2_a);
@@ -96,7 +122,7 @@ component! {
             frame_ia.R = absolute_rotation(&frame_a.R, &r_rel_ia);
             let f_ia_a = resolve1(&r_rel_ia, frame_ia.f);
             let t_ia_a = resolve1(&r_rel_ia, frame_ia.t);
-            let f_b_a1 = e2_a.scale(-n1.dot(t_ia_a) / (rodLength * n1.dot(e3_a)))
+            f_b_a1 = e2_a.scale(-n1.dot(t_ia_a) / (rodLength * n1.dot(e3_a)))
                 + e3_a.scale(e2_a.dot(t_ia_a) / rodLength);
             let f_b_a = f_b_a1 - e_rod_a.scale(f_rod);
             frame_b.f = resolve_relative(f_b_a, &frame_a.R, &frame_b.R);

@@ -192,6 +192,23 @@ impl Scene {
                     )
                 })
             }
+            "Joints.UniversalSpherical" | "Joints.SphericalSpherical" => {
+                let rod = scalar(sys, "rod_diameter").unwrap_or(0.05) / 2.0;
+                let ball = scalar(sys, "sphere_diameter").unwrap_or(0.1) / 2.0;
+                let (a, b) = (self.pos(sys, "frame_a"), self.pos(sys, "frame_b"));
+                if ball > 0.0 {
+                    for at in [a.clone(), b.clone()] {
+                        self.parts.push(Part {
+                            geometry: Geometry::Ball {
+                                a: at,
+                                radius: ball,
+                            },
+                            color: JOINT_COLOR,
+                        });
+                    }
+                }
+                (rod > 0.0).then_some((Geometry::Rod { a, b, radius: rod }, ROD_COLOR))
+            }
             "Joints.Spherical" => {
                 let radius = radius(0.05);
                 (radius > 0.0).then(|| {

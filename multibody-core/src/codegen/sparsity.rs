@@ -113,7 +113,19 @@ pub(crate) fn color_columns(col_ptr: &[usize], row_idx: &[usize], rows: &[Vec<us
     let mut colors = vec![usize::MAX; n_cols];
     let mut forbidden: Vec<usize> = Vec::new(); // forbidden[c] == j: colour c taken for column j
     let mut n_colors = 0;
+    // A row that touches every non-empty column makes all of them conflict: one colour
+    // each, found in O(nnz) instead of the greedy's O(sum of squared row lengths) (the
+    // dense Jacobian of a long chain's accelerations).
+    let nonempty = (0..n_cols).filter(|&j| col_ptr[j] < col_ptr[j + 1]).count();
+    let full_row = rows.iter().any(|r| r.len() == nonempty && nonempty > 0);
     for j in 0..n_cols {
+        if full_row {
+            if col_ptr[j] < col_ptr[j + 1] {
+                colors[j] = n_colors;
+                n_colors += 1;
+            }
+            continue;
+        }
         if col_ptr[j] == col_ptr[j + 1] {
             continue; // empty column: no colour needed
         }

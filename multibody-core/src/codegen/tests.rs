@@ -631,3 +631,37 @@ fn tape_is_send_and_sync() {
     check::<Tape>();
     check::<DaeJacobian>();
 }
+
+/// Whether no two columns that share a row have the same colour.
+fn coloring_is_valid(rows: &[Vec<usize>], colors: &[usize]) -> bool {
+    rows.iter().all(|r| {
+        let mut seen = BTreeSet::new();
+        r.iter().all(|&c| seen.insert(colors[c]))
+    })
+}
+
+#[test]
+fn column_colouring_is_valid_with_and_without_a_full_row() {
+    use super::sparsity::{color_columns, rows_to_csc};
+    // A tridiagonal pattern: 3 colours.
+    let n: usize = 9;
+    let tri: Vec<Vec<usize>> = (0..n)
+        .map(|i| (i.saturating_sub(1)..(i + 2).min(n)).collect())
+        .collect();
+    let (cp, ri) = rows_to_csc(&tri, n);
+    let c = color_columns(&cp, &ri, &tri);
+    assert_eq!(c.n_colors, 3);
+    assert!(coloring_is_valid(&tri, &c.colors));
+    // The same with one full row (and an empty column 4 left out of the pattern): every
+    // non-empty column conflicts with every other one.
+    let mut full: Vec<Vec<usize>> = tri
+        .iter()
+        .map(|r| r.iter().copied().filter(|&c| c != 4).collect())
+        .collect();
+    full[0] = (0..n).filter(|&c| c != 4).collect();
+    let (cp, ri) = rows_to_csc(&full, n);
+    let c = color_columns(&cp, &ri, &full);
+    assert_eq!(c.n_colors, n - 1);
+    assert_eq!(c.colors[4], usize::MAX);
+    assert!(coloring_is_valid(&full, &c.colors));
+}
