@@ -197,7 +197,7 @@ impl Scene {
                 let ball = scalar(sys, "sphere_diameter").unwrap_or(0.1) / 2.0;
                 let (a, b) = (self.pos(sys, "frame_a"), self.pos(sys, "frame_b"));
                 if ball > 0.0 {
-                    for at in [a.clone(), b.clone()] {
+                    for at in [a, b] {
                         self.parts.push(Part {
                             geometry: Geometry::Ball {
                                 a: at,
