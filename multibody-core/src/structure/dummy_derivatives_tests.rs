@@ -92,3 +92,42 @@ fn double_pendulum_keeps_four_states() {
     // Positions x1, x2 and velocities vx1, vx2 stay (y's are declared later).
     assert_eq!(sel.states, vec![0, 2, 4, 6]);
 }
+
+/// A crank whose tip is held in place, with its orientation as an implicit slot: slots
+/// phi 0, w 1, der(w) 2, the orientation entry T 3 (implicit, its derivative contains
+/// the frame's angular velocity wf 4), the tip position x 5 and the constraint force
+/// lam 6. Equations: T = f(phi) (a definition), wf = w (the joint's propagation of
+/// angular velocity), x = h(T), 0 = x - c, der(w) = F(phi, w, lam).
+fn held_crank() -> crate::structure::pantelides::IndexReduction {
+    use crate::structure::pantelides::pantelides_with_implicit;
+    let mut g = BipartiteGraph::new(7);
+    g.add_equation(vec![0, 3]);
+    g.add_equation(vec![1, 4]);
+    g.add_equation(vec![3, 5]);
+    g.add_equation(vec![5]);
+    g.add_equation(vec![0, 1, 2, 6]);
+    let var_diff = [Some(1), Some(2), None, None, None, None, None];
+    let implicit = vec![vec![], vec![], vec![], vec![3, 4], vec![], vec![], vec![]];
+    let definitions = [true, false, false, false, false];
+    pantelides_with_implicit(&g, &var_diff, &implicit, &definitions).unwrap()
+}
+
+#[test]
+fn a_constraint_reaches_the_joint_speed_only_through_the_angular_velocity() {
+    let red = held_crank();
+    let n = red.var_diff.len();
+    let rank = ranks(n, &[], &[(0, 3.0), (1, 3.0)]);
+    // Seen directly, the velocity-level constraint contains wf and der(x), not w: no
+    // selection demotes the crank's angle, which the constraint fixes.
+    assert!(matches!(
+        dummy_derivatives(&red, 5, &rank),
+        Err(SelectionError::Singular { .. })
+    ));
+    // With wf marked as an intermediate, its propagation equation (differentiated one
+    // time less) joins the level: w and der(w) become dummies, nothing is a state.
+    let mut marked = vec![false; n];
+    marked[4] = true;
+    let sel = dummy_derivatives_with_intermediates(&red, 5, &rank, &marked).unwrap();
+    assert!(sel.states.is_empty(), "{:?}", sel.states);
+    assert!(sel.dummy[1] && sel.dummy[2]);
+}
