@@ -176,3 +176,79 @@ pub(crate) fn reroot_iteration_variables(
     }
     moved
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::Node;
+
+    /// `0 = x^2 - 4` iterated on x, then `y := x - 1`, `s := 2 y`: with s preferred, the
+    /// chain runs backwards (`y := s / 2`, `x := y + 1`) and s is iterated.
+    #[test]
+    fn iteration_moves_to_the_preferred_coordinate() {
+        let mut a = Arena::new();
+        let (x, y, s) = (a.var(0), a.var(1), a.var(2));
+        let one = a.constant(1.0);
+        let two = a.constant(2.0);
+        let four = a.constant(4.0);
+        let x2 = a.powi(x, 2);
+        let residual = a.sub(x2, four);
+        let y_of_x = a.sub(x, one);
+        let s_of_y = a.mul(two, y);
+        let mut schedule = Schedule {
+            steps: vec![
+                Step::Assign {
+                    target: y,
+                    expr: y_of_x,
+                    equation: 1,
+                },
+                Step::Assign {
+                    target: s,
+                    expr: s_of_y,
+                    equation: 2,
+                },
+            ],
+            iteration: vec![x],
+            residuals: vec![(residual, 0)],
+            blocks: Vec::new(),
+        };
+        let priority: HashMap<Id, f64> = [(s, 3.0)].into_iter().collect();
+        assert_eq!(
+            reroot_iteration_variables(&mut a, &mut schedule, &priority, &[]),
+            1
+        );
+        assert_eq!(schedule.iteration, vec![s]);
+        // Evaluate the new steps at s = 2: y = 1, x = 2, and the residual vanishes.
+        let index = |a: &Arena, leaf: Id| match a.node(leaf) {
+            Node::Var(i) => *i,
+            _ => panic!("a variable"),
+        };
+        let mut values: HashMap<u32, f64> = [(2, 2.0)].into_iter().collect();
+        for step in &schedule.steps {
+            let Step::Assign { target, expr, .. } = step else {
+                panic!("only assignments")
+            };
+            let v = a
+                .eval(*expr, &|n: &Node| match n {
+                    Node::Var(i) => values.get(i).copied(),
+                    _ => None,
+                })
+                .expect("computable");
+            values.insert(index(&a, *target), v);
+        }
+        assert_eq!(values[&1], 1.0);
+        assert_eq!(values[&0], 2.0);
+        let r = a.eval(residual, &|n: &Node| match n {
+            Node::Var(i) => values.get(i).copied(),
+            _ => None,
+        });
+        assert_eq!(r, Some(0.0));
+        // A chain that ends in nothing preferred is left alone.
+        let mut plain = schedule.clone();
+        plain.iteration = vec![s];
+        assert_eq!(
+            reroot_iteration_variables(&mut a, &mut plain, &HashMap::default(), &[]),
+            0
+        );
+    }
+}
