@@ -50,7 +50,8 @@ component! {
     /// Forces the flange to follow the reference angle `phi_ref` (MSL
     /// `Rotational.Sources.Position`): exactly (the reference is differentiated, so it
     /// must be smooth), or filtered by a critically damped 2nd-order Bessel filter of
-    /// cut-off frequency `f_crit` whose states are the flange's angle and speed.
+    /// cut-off frequency `f_crit` whose states are the flange's angle and speed, and
+    /// which starts at the reference angle (an initial equation, as MSL).
     #[type_name = "Rotational.Position"]
     pub struct Position {
         /// Follow the reference exactly rather than filtered.
@@ -67,6 +68,12 @@ component! {
         variable w(state_priority = 10.0): Real;
         /// Angular acceleration of the flange [rad/s2].
         variable a: Real;
+        initial_equation {
+            // The filter starts on the reference (MSL: `if not exact then phi = phi_ref`).
+            if !exact {
+                phi = phi_ref;
+            }
+        }
         equation {
             phi = flange.phi;
             w = der(phi);
