@@ -166,6 +166,14 @@ pub struct SolveError {
 /// A solution was asked for something it does not have.
 #[derive(Debug, Clone, thiserror::Error, PartialEq)]
 pub enum SolutionError {
+    /// No parameter of that name.
+    #[error("the solution has no parameter `{name}`{}", suggest(.suggestions))]
+    UnknownParameter {
+        /// The name asked for.
+        name: String,
+        /// Names close to it.
+        suggestions: Vec<String>,
+    },
     /// No variable of that name.
     #[error("the solution has no variable `{name}`{}", suggest(.suggestions))]
     UnknownVariable {

@@ -356,6 +356,7 @@ impl<'a> DaeProblem<'a> {
             Arc::new(c.observed_names.clone()),
             c.layout,
             self.params.clone(),
+            Arc::new(sys.parameters()),
             sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
             t_out,
             u_out,

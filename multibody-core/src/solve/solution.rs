@@ -24,6 +24,7 @@ pub struct Solution {
     index: HashMap<String, usize>,
     layout: InputLayout,
     params: Vec<f64>,
+    parameter_names: Arc<Vec<String>>,
     differential: Vec<bool>,
     t: Vec<f64>,
     u: Vec<f64>,
@@ -40,6 +41,7 @@ impl Solution {
         names: Arc<Vec<String>>,
         layout: InputLayout,
         params: Vec<f64>,
+        parameter_names: Arc<Vec<String>>,
         differential: Vec<bool>,
         t: Vec<f64>,
         u: Vec<f64>,
@@ -59,6 +61,7 @@ impl Solution {
             index,
             layout,
             params,
+            parameter_names,
             differential,
             t,
             u,
@@ -97,6 +100,19 @@ impl Solution {
     pub fn unknowns_at(&self, k: usize) -> &[f64] {
         let n = self.layout.n;
         &self.u[k * n..(k + 1) * n]
+    }
+
+    /// The value of the tunable parameter `name` in this solution: its default, the
+    /// problem's override, or the value computed at initialization (a rod length).
+    pub fn parameter(&self, name: &str) -> Result<f64, SolutionError> {
+        self.parameter_names
+            .iter()
+            .position(|p| p == name)
+            .and_then(|k| self.params.get(k).copied())
+            .ok_or_else(|| SolutionError::UnknownParameter {
+                name: name.to_string(),
+                suggestions: closest(name, self.parameter_names.iter().map(|s| s.as_str()), 3),
+            })
     }
 
     fn lookup(&self, name: &str) -> Result<usize, SolutionError> {
