@@ -43,6 +43,7 @@ pub mod interfaces;
 pub mod joints;
 pub mod loops;
 mod mechanism;
+mod numeric;
 pub mod parts;
 pub mod render;
 pub mod rotational;

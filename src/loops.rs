@@ -9,9 +9,11 @@
 //! revolute joint of each planar loop becomes a *planar cut* (see
 //! [`Revolute::planar_cut`](crate::joints::Revolute)).
 
+use multibody_core::hash::HashMap;
 use multibody_core::model::{System, join_path};
 
 use crate::joints::Revolute;
+use crate::numeric::{cross, dot, normalize};
 
 /// How a component relates its two frames, for loop finding.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,15 +41,17 @@ struct Edge {
 #[derive(Default)]
 struct Graph {
     nodes: Vec<String>,
+    index: HashMap<String, usize>,
     edges: Vec<Edge>,
 }
 
 impl Graph {
     fn node(&mut self, path: &str) -> usize {
-        if let Some(k) = self.nodes.iter().position(|n| n == path) {
+        if let Some(&k) = self.index.get(path) {
             return k;
         }
         self.nodes.push(path.to_string());
+        self.index.insert(path.to_string(), self.nodes.len() - 1);
         self.nodes.len() - 1
     }
 
@@ -156,18 +160,13 @@ fn tree_path(g: &Graph, adjacent: &[Vec<usize>], from: usize, to: usize) -> Vec<
     path
 }
 
-fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (l > 1e-12).then(|| [v[0] / l, v[1] / l, v[2] / l])
-}
-
 /// Whether a loop's links move in a plane: at least two revolute joints, all axes
 /// parallel, prismatic axes across them, nothing else that rotates.
 fn is_planar(links: &[&Link]) -> bool {
     let axes: Vec<[f64; 3]> = links
         .iter()
         .filter_map(|l| match l {
-            Link::Revolute(n) => unit(*n),
+            Link::Revolute(n) => normalize(*n),
             _ => None,
         })
         .collect();
@@ -179,21 +178,12 @@ fn is_planar(links: &[&Link]) -> bool {
         return false;
     }
     let n0 = axes[0];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
     let parallel = axes.iter().all(|&n| {
         let c = cross(n0, n);
-        c.iter().map(|x| x * x).sum::<f64>() < 1e-18
+        dot(c, c) < 1e-18
     });
     let across = links.iter().all(|l| match l {
-        Link::Prismatic(n) => {
-            unit(*n).is_some_and(|u| (0..3).map(|i| u[i] * n0[i]).sum::<f64>().abs() < 1e-9)
-        }
+        Link::Prismatic(n) => normalize(*n).is_some_and(|u| dot(u, n0).abs() < 1e-9),
         _ => true,
     });
     parallel && across

@@ -205,40 +205,9 @@ fn the_spatial_loop_cut_anywhere_has_the_same_unknowns() {
 
 /// The planar four-bar with `j4` a plain revolute joint: five parallel revolute joints.
 fn planar_fourbar_without_loop_constraint() -> System {
-    use multibody::joints::Revolute;
-    use multibody::parts::BodyShape;
-    use multibody::rotational::Damper;
-    use multibody::world::World;
-    let l = 1.5;
-    system! {
-        name: "fourbar";
-        world = World::default();
-        j1 = Revolute { axisflange: true };
-        j2 = Revolute { axisflange: true };
-        j3 = Revolute::default();
-        j4 = Revolute::default();
-        j5 = Revolute::default();
-        b1 = BodyShape { m: 1.0, r: [l, 0.0, 0.0], radius: 0.03 };
-        b2 = BodyShape { m: 1.0, r: [0.0, l, 0.0], radius: 0.03 };
-        b3 = BodyShape { m: 1.0, r: [-l, 0.0, 0.0], radius: 0.03 };
-        b4 = BodyShape { m: 1.0, r: [0.0, -l, 0.0], radius: 0.03 };
-        damper1 = Damper { d: 0.1 };
-        damper2 = Damper { d: 0.1 };
-        connect(world.frame_b, j1.frame_a);
-        connect(j1.frame_b, b1.frame_a);
-        connect(b1.frame_b, j2.frame_a);
-        connect(j2.frame_b, b2.frame_a);
-        connect(b2.frame_b, j3.frame_a);
-        connect(j3.frame_b, b3.frame_a);
-        connect(b3.frame_b, j4.frame_a);
-        connect(j4.frame_b, b4.frame_a);
-        connect(b4.frame_b, j5.frame_a);
-        connect(j5.frame_b, world.frame_b);
-        connect(j1.axis, damper1.flange_a);
-        connect(j1.support, damper1.flange_b);
-        connect(j2.axis, damper2.flange_a);
-        connect(j2.support, damper2.flange_b);
-    }
+    let mut model = fourbar_example::fourbar();
+    assert!(model.replace("j4", &multibody::joints::Revolute::default()));
+    model
 }
 
 #[test]

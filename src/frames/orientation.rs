@@ -244,14 +244,7 @@ pub fn axes_rotations_angles(
         v[i - 1] = 1.0;
         v
     };
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
+    use crate::numeric::{cross, dot};
     let mat_vec = |m: [[f64; 3]; 3], v: [f64; 3]| [dot(m[0], v), dot(m[1], v), dot(m[2], v)];
     let transpose = |m: [[f64; 3]; 3]| {
         [
@@ -338,15 +331,7 @@ pub fn from_nxy(n_x: [f64; 3], n_y: [f64; 3]) -> Orientation {
 
 /// The transformation matrix of [`from_nxy`].
 pub fn t_from_nxy(n_x: [f64; 3], n_y: [f64; 3]) -> [[f64; 3]; 3] {
-    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let scale = |v: [f64; 3], k: f64| [v[0] * k, v[1] * k, v[2] * k];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
+    use crate::numeric::{cross, norm, scale};
     let e_x = if norm(n_x) < 1e-10 {
         [1.0, 0.0, 0.0]
     } else {
@@ -373,15 +358,7 @@ pub fn t_from_nxy(n_x: [f64; 3], n_y: [f64; 3]) -> [[f64; 3]; 3] {
 /// The orientation whose x axis points along `n_x` and whose z axis is as close as
 /// possible to `n_z` (numeric, `w = 0`).
 pub fn from_nxz(n_x: [f64; 3], n_z: [f64; 3]) -> Orientation {
-    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let scale = |v: [f64; 3], k: f64| [v[0] * k, v[1] * k, v[2] * k];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
+    use crate::numeric::{cross, norm, scale};
     let e_x = if norm(n_x) < 1e-10 {
         [1.0, 0.0, 0.0]
     } else {

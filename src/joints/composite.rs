@@ -2,18 +2,11 @@
 
 use super::{JOINT_STATE_PRIORITY, Prismatic, Revolute};
 use crate::interfaces::Frame;
+use crate::numeric::cross;
 use crate::prelude::*;
 
 /// Sub-joints do not compete for states: the composite joint's own variables do.
 const NEVER: f64 = -100.0;
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 component! {
     /// A universal (Cardan) joint (MSL `Joints.Universal`): a rotation about `n_a`

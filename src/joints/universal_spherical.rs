@@ -5,20 +5,11 @@ use crate::frames::{
     Mat3, Orientation, Vec3, absolute_rotation, resolve_relative, resolve1, resolve2,
 };
 use crate::interfaces::Frame;
+use crate::numeric::{cross, normalize};
 use crate::prelude::*;
 
 fn normalized(v: [f64; 3], what: &str) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    assert!(l > 1e-12, "UniversalSpherical: {what} must not be zero");
-    [v[0] / l, v[1] / l, v[2] / l]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    normalize(v).unwrap_or_else(|| panic!("UniversalSpherical: {what} must not be zero"))
 }
 
 component! {

@@ -6,6 +6,7 @@ use super::body::{Body, OrientationStates};
 use super::fixed::FixedTranslation;
 use crate::frames::t_from_nxy;
 use crate::interfaces::Frame;
+use crate::numeric::norm;
 use crate::prelude::*;
 
 /// Mass properties computed from a shape.
@@ -17,10 +18,6 @@ pub struct MassProperties {
     pub r_cm: [f64; 3],
     /// Inertia about the centre of mass, resolved in `frame_a` \[kg.m2\].
     pub inertia: [[f64; 3]; 3],
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 /// `T' D T` for a diagonal `D`: the inertia of a shape whose axes are the rows of `T`.

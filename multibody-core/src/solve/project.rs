@@ -21,6 +21,8 @@ const MAX_ALGEBRAIC: usize = 64;
 /// The square system of algebraic rows and unknowns, when there is one.
 pub(crate) struct Projection {
     rows: Vec<usize>,
+    /// For each residual row, its position in `rows`.
+    row_of: Vec<Option<usize>>,
     cols: Vec<usize>,
     /// CSC pattern of the Jacobian.
     col_ptr: Vec<usize>,
@@ -60,8 +62,13 @@ impl Projection {
             }
         }
         let rows: Vec<usize> = (0..n).filter(|&r| !dynamic[r]).collect();
+        let mut row_of = vec![None; n];
+        for (k, &r) in rows.iter().enumerate() {
+            row_of[r] = Some(k);
+        }
         (rows.len() == cols.len()).then(|| Projection {
             rows,
+            row_of,
             cols,
             values: vec![0.0; row_idx.len()],
             col_ptr,
@@ -92,16 +99,9 @@ impl Projection {
                 return;
             }
             let mut j = DMatrix::<f64>::zeros(m, m);
-            let row_of: Vec<Option<usize>> = {
-                let mut v = vec![None; self.residual.len()];
-                for (k, &r) in self.rows.iter().enumerate() {
-                    v[r] = Some(k);
-                }
-                v
-            };
             for (jc, &c) in self.cols.iter().enumerate() {
                 for k in self.col_ptr[c]..self.col_ptr[c + 1] {
-                    if let Some(i) = row_of[self.row_idx[k]] {
+                    if let Some(i) = self.row_of[self.row_idx[k]] {
                         j[(i, jc)] = self.values[k];
                     }
                 }

@@ -154,9 +154,15 @@ pub fn dummy_derivatives_with_intermediates(
             // intermediate unknowns of the same order that equations outside the level
             // determine (a frame's angular velocity, propagated from the joints' speeds,
             // is what the derivative of a loop's position constraint contains).
-            if let Some(alternative) =
-                select_with_companions(red, &counts, level, &equations, &candidates, intermediates)
-            {
+            if let Some(alternative) = select_with_companions(
+                red,
+                &anti,
+                &counts,
+                level,
+                &equations,
+                &candidates,
+                intermediates,
+            ) {
                 selected = alternative;
             }
         }
@@ -205,6 +211,7 @@ pub fn dummy_derivatives_with_intermediates(
 /// and the candidates kept are as many as the level's equations.
 fn select_with_companions(
     red: &IndexReduction,
+    anti: &[Option<usize>],
     counts: &[usize],
     level: usize,
     equations: &[usize],
@@ -215,7 +222,6 @@ fn select_with_companions(
     let is_candidate: HashSet<usize> = candidates.iter().copied().collect();
     // An angular velocity that alias elimination merged with a joint's speed is a
     // derivative (of the joint angle): not an intermediate.
-    let anti = red.antiderivative_var();
     let is_intermediate = |v: usize| {
         !is_candidate.contains(&v) && marked.get(v).copied().unwrap_or(false) && anti[v].is_none()
     };
