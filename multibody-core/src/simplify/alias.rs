@@ -28,6 +28,10 @@ pub(crate) struct Aliases {
     /// `der(x) -> v` for the derivative aliases: applied after every time
     /// differentiation so derivatives land on existing variables.
     pub derivative_map: HashMap<Id, Id>,
+    /// Per flat variable: whether a derivative rule (after the substitution) contains
+    /// it (the angular velocities in the derivatives of orientation entries, and those
+    /// entries themselves).
+    pub in_rules: Vec<bool>,
 }
 
 enum Pattern {
@@ -244,8 +248,14 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     let mut dmap: HashMap<Id, Id> = HashMap::default();
     let mut has_rule = vec![false; nv];
     let rules = flat.derivative_rules.clone();
+    let mut in_rules = vec![false; nv];
     for (x, expr) in rules {
         let e = flat.arena.substitute(expr, &map);
+        for leaf in flat.arena.leaves(e) {
+            if let Node::Var(v) = flat.arena.node(leaf) {
+                in_rules[*v as usize] = true;
+            }
+        }
         let (target, sign) = match replaced[x as usize] {
             None => (x, 1.0),
             Some(r) => match flat.arena.node(r).clone() {
@@ -325,6 +335,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         removed,
         map,
         derivative_map: dmap,
+        in_rules,
     }
 }
 

@@ -27,7 +27,7 @@ pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
 
 use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
-use crate::expr::{Id, Node};
+use crate::expr::Id;
 use crate::model::{EquationText, System, check_balance, flatten};
 
 use causalize::{Temporaries, causalize};
@@ -99,15 +99,9 @@ pub fn structural_simplify_with(
         has_rule[x as usize] = true;
     }
     // Angular velocities: what the derivative rules contain, under the aliases.
-    let mut angular_velocity = vec![false; nv];
-    for &(_, expr) in &flat.derivative_rules {
-        let e = flat.arena.substitute(expr, &aliases.map);
-        for leaf in flat.arena.leaves(e) {
-            if let Node::Var(v) = flat.arena.node(leaf) {
-                angular_velocity[*v as usize] = !has_rule[*v as usize];
-            }
-        }
-    }
+    let angular_velocity: Vec<bool> = (0..nv)
+        .map(|v| aliases.in_rules[v] && !has_rule[v])
+        .collect();
     let kept_eqs: Vec<usize> = (0..flat.equations.len())
         .filter(|&e| !aliases.removed[e])
         .collect();
