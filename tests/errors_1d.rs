@@ -188,4 +188,20 @@ fn solver_failure_says_when_and_why() {
         panic!("expected a solver error: {text}")
     };
     assert!(e.t > 0.99 && e.t < 1.0, "failure time {}", e.t);
+    // Why: x grows without bound towards t = 1, so the local error estimate does too and
+    // IDA shrinks the step until it gives up: its error-test failure, in words.
+    assert_eq!(e.flag, "IDA_ERR_FAIL", "{text}");
+    let reason =
+        "error test failed repeatedly (step size became too small; stiff or discontinuous?)";
+    assert!(e.message.starts_with(reason), "{}", e.message);
+    assert!(
+        text.ends_with(&format!(": {}", e.message)) && text.contains(reason),
+        "{text}"
+    );
+    // SUNDIALS' own message is kept, with the step size it reached.
+    assert!(
+        e.message.contains("[SUNDIALS: ") && e.message.contains("the error test failed repeatedly"),
+        "{}",
+        e.message
+    );
 }

@@ -180,6 +180,9 @@ fn main() -> Result<(), multibody::Error> {
         {
             linear_blocks.max_inline_tearing = k;
         }
+        if std::env::var("BENCH_DAE_FORM").is_ok() {
+            linear_blocks.sparse_inline = false;
+        }
         let options = SimplifyOptions {
             evaluate_parameters: std::env::var("BENCH_EVALUATE").is_ok(),
             linear_blocks,
@@ -278,6 +281,10 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
             .expect("residual");
     }
     let per = t.elapsed().as_secs_f64() / reps as f64;
+    eprintln!(
+        "  sparse solves (size, matrix entries, LU entries): {:?}",
+        ws.sparse_factor_sizes()
+    );
     eprintln!(
         "  residual eval {:.2} us ({:.2} ns per instruction)",
         per * 1e6,

@@ -67,6 +67,8 @@ pub(crate) struct SparseLu {
     mark: Vec<usize>,
     stack: Vec<(usize, usize)>,
     reach: Vec<usize>,
+    /// Entries of the pattern given to `reset`.
+    pattern_nnz: usize,
     /// Number of factorizations with pivoting (for tests and logs).
     pub(crate) pivoting_factorizations: usize,
     /// Number of refactorizations that replayed the pivots.
@@ -77,6 +79,7 @@ impl SparseLu {
     /// Forgets the pattern: the next factorization orders and pivots afresh.
     pub(crate) fn reset(&mut self, n: usize, col_ptr: &[usize], row_idx: &[usize]) {
         self.n = n;
+        self.pattern_nnz = col_ptr.get(n).copied().unwrap_or(0);
         self.factored = false;
         (self.col_order, self.preferred_row) = ordering(n, col_ptr, row_idx);
     }
@@ -353,7 +356,21 @@ impl SparseLu {
 
     /// Entries of `L` and `U` (diagonal included), for logs.
     pub(crate) fn factor_nnz(&self) -> usize {
-        self.l_row.len() + self.u_step.len() + self.n
+        if self.factored {
+            self.l_row.len() + self.u_step.len() + self.n
+        } else {
+            0
+        }
+    }
+
+    /// Order of the matrix.
+    pub(crate) fn size(&self) -> usize {
+        self.n
+    }
+
+    /// Entries of the matrix pattern (as given to [`reset`](Self::reset)).
+    pub(crate) fn pattern_nnz(&self) -> usize {
+        self.pattern_nnz
     }
 }
 

@@ -39,7 +39,8 @@ pub enum Item {
         /// Default value.
         default: Expr,
     },
-    /// `connector flange_a: Flange;`
+    /// `connector flange_a: Flange;`, or `connector y(start = y_start): RealOutput;` for a
+    /// signal connector whose value has a start.
     Connector {
         /// Doc comments.
         docs: Vec<Attribute>,
@@ -47,6 +48,8 @@ pub enum Item {
         name: Ident,
         /// The connector type.
         ty: Path,
+        /// Attributes of a signal connector's value (only `start`).
+        modifiers: Vec<Modifier>,
     },
     /// `variable phi: Real (start = 0.0);`
     Variable {

@@ -186,7 +186,12 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                     ));
                 }
             }
-            Item::Connector { docs, name: n, ty } => {
+            Item::Connector {
+                docs,
+                name: n,
+                ty,
+                modifiers,
+            } => {
                 let s = n.to_string();
                 let docs = docs_escaped(docs);
                 handle_fields.extend(quote!(#docs pub #n: <#ty as #p::Connector>::Handle,));
@@ -195,6 +200,12 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 connectors.extend(quote!(
                     let #n = __s.add_connector(#s, &<#ty as ::core::default::Default>::default());
                 ));
+                for m in modifiers {
+                    let v = &m.value;
+                    connectors.extend(quote_spanned!(m.key.span()=>
+                        __s.set_start(#s, #v);
+                    ));
+                }
             }
             Item::Variable {
                 docs,

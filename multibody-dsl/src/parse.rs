@@ -91,10 +91,26 @@ impl Parse for Item {
             }
             "connector" => {
                 let name: Ident = input.parse()?;
+                let modifiers = modifiers(input)?;
+                if let Some(m) = modifiers.iter().find(|m| m.key != "start") {
+                    return Err(syn::Error::new(
+                        m.key.span(),
+                        format!(
+                            "a connector takes only `start` (of a signal connector's value), \
+                             not `{}`",
+                            m.key
+                        ),
+                    ));
+                }
                 input.parse::<Token![:]>()?;
                 let ty: Path = input.parse()?;
                 input.parse::<Token![;]>()?;
-                Item::Connector { docs, name, ty }
+                Item::Connector {
+                    docs,
+                    name,
+                    ty,
+                    modifiers,
+                }
             }
             "variable" => {
                 let name: Ident = input.parse()?;

@@ -298,3 +298,23 @@ fn a_branch_inside_a_conditional_block_is_declared_only_there() {
     assert!(!out[else_at + 6..branch_at].contains('}'), "{out}");
     assert_eq!(out.matches("__s . branch").count(), 1, "{out}");
 }
+
+#[test]
+fn a_signal_connector_takes_a_start_and_nothing_else() {
+    let d = parse_component(quote! {
+        struct Lag {
+            parameter y_start: f64 = 0.5;
+            connector y(start = y_start): RealOutput;
+        }
+    })
+    .unwrap();
+    let Item::Connector { modifiers, .. } = &d.items[1] else {
+        panic!("a connector");
+    };
+    assert_eq!(modifiers.len(), 1);
+    assert_eq!(modifiers[0].key, "start");
+    let code = crate::expand::component(&d).unwrap().to_string();
+    assert!(code.contains("set_start (\"y\" , y_start)"), "{code}");
+    let e = error_of(quote! { struct X { connector y(fixed = true): RealOutput; } });
+    assert!(e.contains("only `start`") && e.contains("`fixed`"), "{e}");
+}

@@ -16,8 +16,8 @@ component! {
         structural init: Init = Init::InitialState;
         /// Input.
         connector u: RealInput;
-        /// Output.
-        connector y: RealOutput;
+        /// Output (starts at `y_start`: fixed by `init`, otherwise a guess).
+        connector y(start = y_start): RealOutput;
         equation {
             der(y) = k * u;
         }
@@ -45,8 +45,8 @@ component! {
         structural init: Init = Init::NoInit;
         /// Input.
         connector u: RealInput;
-        /// Output.
-        connector y: RealOutput;
+        /// Output (starts at `y_start`: fixed by `init`, otherwise a guess).
+        connector y(start = y_start): RealOutput;
         equation {
             der(y) = (k * u - y) / T;
         }

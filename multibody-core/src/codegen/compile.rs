@@ -10,6 +10,52 @@ use super::{CodegenError, Stmt};
 /// A hash map with the fast hasher.
 pub(crate) type FastMap<K, V> = crate::hash::HashMap<K, V>;
 
+/// A map from arena ids to registers, stored densely by id (the arena is fixed while a
+/// builder exists): no hashing on the builder's most frequent lookups.
+#[derive(Clone, Debug)]
+struct IdMap {
+    values: Vec<u32>,
+    /// Ids with a value, for `clear`.
+    set: Vec<u32>,
+}
+
+impl IdMap {
+    const NONE: u32 = u32::MAX;
+
+    fn new(len: usize) -> Self {
+        IdMap {
+            values: vec![Self::NONE; len],
+            set: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn get(&self, id: Id) -> Option<u32> {
+        match self.values.get(id.index()) {
+            Some(&v) if v != Self::NONE => Some(v),
+            _ => None,
+        }
+    }
+
+    fn insert(&mut self, id: Id, v: u32) {
+        let i = id.index();
+        if i >= self.values.len() {
+            self.values.resize(i + 1, Self::NONE);
+        }
+        if self.values[i] == Self::NONE {
+            self.set.push(i as u32);
+        }
+        self.values[i] = v;
+    }
+
+    fn clear(&mut self) {
+        for &i in &self.set {
+            self.values[i as usize] = Self::NONE;
+        }
+        self.set.clear();
+    }
+}
+
 /// Compiles expressions of one [`Arena`] into a [`Tape`].
 ///
 /// Bind leaves to input slots with [`input`](Self::input), add statements with
@@ -26,8 +72,8 @@ pub struct TapeBuilder<'a> {
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
     numbering: FastMap<Op, u32>,
-    bound: FastMap<Id, u32>,
-    memo: FastMap<Id, u32>,
+    bound: IdMap,
+    memo: IdMap,
     ls: Vec<LsInfo>,
     outputs: Vec<u32>,
     stack: Vec<(Id, bool)>,
@@ -44,8 +90,8 @@ impl<'a> TapeBuilder<'a> {
             consts: Vec::new(),
             const_index: FastMap::default(),
             numbering: FastMap::default(),
-            bound: FastMap::default(),
-            memo: FastMap::default(),
+            bound: IdMap::new(arena.len()),
+            memo: IdMap::new(arena.len()),
             ls: Vec::new(),
             outputs: Vec::new(),
             stack: Vec::new(),
@@ -314,10 +360,10 @@ impl<'a> TapeBuilder<'a> {
     /// Binds `id` to register `r`; compiled expressions that might have used an older
     /// binding are forgotten.
     fn bind(&mut self, id: Id, r: u32) {
-        if self.bound.get(&id) == Some(&r) {
+        if self.bound.get(id) == Some(r) {
             return;
         }
-        if self.bound.contains_key(&id) || self.memo.contains_key(&id) {
+        if self.bound.get(id).is_some() || self.memo.get(id).is_some() {
             self.memo.clear();
         }
         self.bound.insert(id, r);
@@ -325,7 +371,7 @@ impl<'a> TapeBuilder<'a> {
 
     #[inline]
     fn lookup(&self, id: Id) -> Option<u32> {
-        self.bound.get(&id).or_else(|| self.memo.get(&id)).copied()
+        self.bound.get(id).or_else(|| self.memo.get(id))
     }
 
     #[inline]

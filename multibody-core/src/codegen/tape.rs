@@ -263,6 +263,18 @@ pub(crate) struct SparseSolves {
 }
 
 impl Workspace {
+    /// For each sparse linear solve of the last evaluated tape: its size, the entries
+    /// of its matrix and the entries of its LU factors (diagonal included; 0 before
+    /// the first evaluation). For logs and benchmarks.
+    pub fn sparse_factor_sizes(&self) -> Vec<(usize, usize, usize)> {
+        self.sparse
+            .lu
+            .iter()
+            .filter(|lu| lu.size() > 0)
+            .map(|lu| (lu.size(), lu.pattern_nnz(), lu.factor_nnz()))
+            .collect()
+    }
+
     /// Makes sure the buffers fit `tape` with `lanes` tangent directions.
     pub(crate) fn fit(&mut self, tape: &Tape, lanes: usize) {
         let n = tape.ops.len();

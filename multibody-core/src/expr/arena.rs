@@ -16,6 +16,11 @@ pub struct Arena {
     hashes: Vec<u64>,
     /// Node ids by hash: each node is stored once, in `nodes`.
     table: HashTable<u32>,
+    /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
+    /// the most frequent lookups skip hashing.
+    var_leaf: Vec<[u32; 2]>,
+    /// Direct index of the leaves `Param(i)` (`u32::MAX` when absent).
+    param_leaf: Vec<u32>,
 }
 
 fn hash_node(n: &Node) -> u64 {
@@ -44,6 +49,8 @@ impl Arena {
             nodes: Vec::new(),
             hashes: Vec::new(),
             table: HashTable::new(),
+            var_leaf: Vec::new(),
+            param_leaf: Vec::new(),
         };
         a.constant(0.0);
         a.constant(1.0);
@@ -66,6 +73,40 @@ impl Arena {
     }
 
     fn intern(&mut self, n: Node) -> Id {
+        match n {
+            Node::Var(i) => return self.var(i),
+            Node::Param(i) => return self.param(i),
+            Node::Der(x) => {
+                if let Node::Var(i) = self.nodes[x.index()] {
+                    return self.der_var(i, x);
+                }
+            }
+            _ => {}
+        }
+        self.intern_hashed(n)
+    }
+
+    /// `der(x)` for `x = Var(i)`, through the direct index.
+    fn der_var(&mut self, i: u32, x: Id) -> Id {
+        let slot = self.var_leaf.get(i as usize).map_or(u32::MAX, |s| s[1]);
+        if slot != u32::MAX {
+            return Id(slot);
+        }
+        let id = self.intern_hashed(Node::Der(x));
+        self.leaf_slot(i)[1] = id.0;
+        id
+    }
+
+    fn leaf_slot(&mut self, i: u32) -> &mut [u32; 2] {
+        let i = i as usize;
+        if self.var_leaf.len() <= i {
+            self.var_leaf
+                .resize((i + 1).max(2 * self.var_leaf.len()), [u32::MAX; 2]);
+        }
+        &mut self.var_leaf[i]
+    }
+
+    fn intern_hashed(&mut self, n: Node) -> Id {
         let h = hash_node(&n);
         let nodes = &self.nodes;
         if let Some(&id) = self.table.find(h, |&i| nodes[i as usize] == n) {
@@ -105,12 +146,30 @@ impl Arena {
 
     /// A variable leaf.
     pub fn var(&mut self, i: u32) -> Id {
-        self.intern(Node::Var(i))
+        let slot = self.var_leaf.get(i as usize).map_or(u32::MAX, |s| s[0]);
+        if slot != u32::MAX {
+            return Id(slot);
+        }
+        let id = self.intern_hashed(Node::Var(i));
+        self.leaf_slot(i)[0] = id.0;
+        id
     }
 
     /// A parameter leaf.
     pub fn param(&mut self, i: u32) -> Id {
-        self.intern(Node::Param(i))
+        let k = i as usize;
+        if let Some(&slot) = self.param_leaf.get(k)
+            && slot != u32::MAX
+        {
+            return Id(slot);
+        }
+        let id = self.intern_hashed(Node::Param(i));
+        if self.param_leaf.len() <= k {
+            self.param_leaf
+                .resize((k + 1).max(2 * self.param_leaf.len()), u32::MAX);
+        }
+        self.param_leaf[k] = id.0;
+        id
     }
 
     /// Time.
@@ -387,14 +446,27 @@ impl Arena {
 
     /// The children of a node, in order.
     pub fn children(&self, id: Id) -> Vec<Id> {
+        let mut out = Vec::new();
+        self.push_children(id, &mut out);
+        out
+    }
+
+    /// Appends the direct operands of `id` to `out` (no allocation of its own).
+    pub fn push_children(&self, id: Id, out: &mut Vec<Id>) {
         match self.node(id) {
-            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => vec![],
-            Node::Der(x) => vec![*x],
-            Node::Sum(ts, _) => ts.iter().map(|&(_, t)| t).collect(),
-            Node::Prod(fs) => fs.iter().map(|&(b, _)| b).collect(),
-            Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => vec![*a, *b],
-            Node::F1(_, a) => vec![*a],
-            Node::If(c, a, b) => vec![*c, *a, *b],
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => {}
+            Node::Der(x) | Node::F1(_, x) => out.push(*x),
+            Node::Sum(ts, _) => out.extend(ts.iter().map(|&(_, t)| t)),
+            Node::Prod(fs) => out.extend(fs.iter().map(|&(b, _)| b)),
+            Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => {
+                out.push(*a);
+                out.push(*b);
+            }
+            Node::If(c, a, b) => {
+                out.push(*c);
+                out.push(*a);
+                out.push(*b);
+            }
         }
     }
 }

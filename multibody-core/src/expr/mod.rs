@@ -236,4 +236,6 @@ pub fn is_leaf(node: &Node) -> bool {
 }
 
 #[cfg(test)]
+mod diff_tests;
+#[cfg(test)]
 mod tests;

@@ -52,21 +52,30 @@ impl Arena {
         if let Some(&r) = map.get(&e) {
             return r;
         }
+        match self.node(e) {
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => return e,
+            Node::Der(_) if opaque => return e,
+            _ => {}
+        }
         if let Some(&r) = memo.get(&e) {
             return r;
         }
-        let node = self.node(e).clone();
-        let r = match node {
+        // Children are read by position, so the node itself is never cloned.
+        let r = match *self.node(e) {
             Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => e,
-            Node::Der(_) if opaque => e,
             Node::Der(x) => {
                 let nx = self.subst_rec(x, map, memo, opaque);
                 if nx == x { e } else { self.der(nx) }
             }
-            Node::Sum(ts, c) => {
-                let mut terms = Vec::with_capacity(ts.len());
+            Node::Sum(ref ts, c) => {
+                let len = ts.len();
+                let mut terms = Vec::with_capacity(len);
                 let mut changed = false;
-                for &(k, t) in ts.iter() {
+                for i in 0..len {
+                    let Node::Sum(ts, _) = self.node(e) else {
+                        unreachable!("a sum node")
+                    };
+                    let (k, t) = ts[i];
                     let nt = self.subst_rec(t, map, memo, opaque);
                     changed |= nt != t;
                     terms.push((f64::from_bits(k), nt));
@@ -77,10 +86,15 @@ impl Arena {
                     e
                 }
             }
-            Node::Prod(fs) => {
-                let mut factors = Vec::with_capacity(fs.len());
+            Node::Prod(ref fs) => {
+                let len = fs.len();
+                let mut factors = Vec::with_capacity(len);
                 let mut changed = false;
-                for &(b, n) in fs.iter() {
+                for i in 0..len {
+                    let Node::Prod(fs) = self.node(e) else {
+                        unreachable!("a product node")
+                    };
+                    let (b, n) = fs[i];
                     let nb = self.subst_rec(b, map, memo, opaque);
                     changed |= nb != b;
                     factors.push((nb, n));
@@ -131,54 +145,72 @@ impl Arena {
     /// The distinct leaves of `e` (variables, parameters, time, derivatives), sorted.
     /// `der(x)` is a leaf of its own; `x` is not listed for it.
     pub fn leaves(&self, e: Id) -> Vec<Id> {
-        let mut seen = HashSet::default();
         let mut out = Vec::new();
-        let mut stack = vec![e];
-        while let Some(x) = stack.pop() {
-            if !seen.insert(x) {
-                continue;
-            }
-            let n = self.node(x);
+        self.walk(e, &mut |x, n| {
             if is_leaf(n) {
                 out.push(x);
+                false
             } else {
-                stack.extend(self.children(x));
+                true
             }
-        }
-        out.sort();
+        });
+        out.sort_unstable();
+        out.dedup();
         out
     }
 
     /// Whether `leaf` occurs in `e`.
     pub fn contains(&self, e: Id, leaf: Id) -> bool {
-        let mut seen = HashSet::default();
-        let mut stack = vec![e];
-        while let Some(x) = stack.pop() {
-            if x == leaf {
-                return true;
-            }
-            if !seen.insert(x) || is_leaf(self.node(x)) {
-                continue;
-            }
-            stack.extend(self.children(x));
-        }
-        false
+        let mut found = false;
+        self.walk(e, &mut |x, n| {
+            found |= x == leaf;
+            !found && !is_leaf(n)
+        });
+        found
     }
 
-    /// Whether any of `leaves` (a set) occurs in `e`.
+    /// Whether any of `leaves` occurs in `e`.
     pub fn contains_any(&self, e: Id, leaves: &HashSet<Id>) -> bool {
-        let mut seen = HashSet::default();
+        let mut found = false;
+        self.walk(e, &mut |x, n| {
+            found |= leaves.contains(&x);
+            !found && !is_leaf(n)
+        });
+        found
+    }
+
+    /// Visits each distinct node of `e` once (depth first); `visit` returns whether to
+    /// descend into the node's operands. Small expressions are deduplicated by a linear
+    /// scan, larger ones by a hash set, so the common case allocates one small stack.
+    fn walk(&self, e: Id, visit: &mut dyn FnMut(Id, &Node) -> bool) {
+        const SMALL: usize = 48;
         let mut stack = vec![e];
+        let mut seen_small: Vec<Id> = Vec::new();
+        let mut seen_large: Option<HashSet<Id>> = None;
         while let Some(x) = stack.pop() {
-            if leaves.contains(&x) {
-                return true;
-            }
-            if !seen.insert(x) || is_leaf(self.node(x)) {
+            let new = match &mut seen_large {
+                Some(set) => set.insert(x),
+                None => {
+                    if seen_small.contains(&x) {
+                        false
+                    } else if seen_small.len() < SMALL {
+                        seen_small.push(x);
+                        true
+                    } else {
+                        let mut set: HashSet<Id> = seen_small.drain(..).collect();
+                        set.insert(x);
+                        seen_large = Some(set);
+                        true
+                    }
+                }
+            };
+            if !new {
                 continue;
             }
-            stack.extend(self.children(x));
+            if visit(x, self.node(x)) {
+                self.push_children(x, &mut stack);
+            }
         }
-        false
     }
 
     /// Copies `e` from `src` into this arena; `leaf` maps each leaf node of `src`

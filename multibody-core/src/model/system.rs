@@ -182,6 +182,30 @@ impl System {
         Expr::param(&self.full(local_path))
     }
 
+    /// Sets the start value (a guess unless the variable is `fixed`) of the unknown at
+    /// `local_path`, declared here or in a sub-component or connector (a signal
+    /// connector's value is at the connector's own path, `y`). Returns whether that
+    /// unknown exists.
+    pub fn set_start(&mut self, local_path: &str, value: impl Into<Expr>) -> bool {
+        fn find<'s>(s: &'s mut System, full: &str) -> Option<&'s mut Variable> {
+            if let Some(i) = s.variables.iter().position(|v| v.name == full) {
+                return Some(&mut s.variables[i]);
+            }
+            s.subsystems
+                .iter_mut()
+                .filter(|c| full.starts_with(c.path.as_str()))
+                .find_map(|c| find(c, full))
+        }
+        let full = self.full(local_path);
+        match find(self, &full) {
+            Some(v) => {
+                v.start = Some(value.into());
+                true
+            }
+            None => false,
+        }
+    }
+
     /// Adds the equation `lhs = rhs`.
     pub fn equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
         self.equations.push(Equation {

@@ -103,12 +103,123 @@ fn unconnected_flow_is_zero_and_unbalance_names_variables() {
     m.connect("r1.p", "gnd.p");
     m.var("x");
     let flat = flatten(&m).unwrap();
-    let err = check_balance(&flat).unwrap_err().to_string();
+    let err = check_balance(&flat).unwrap_err();
+    // `x` is declared at the root, whose path is empty: its full path is `x`. The
+    // Dulmage-Mendelsohn under-determined part is exactly {x} (every other unknown is
+    // matched), and nothing is over-determined.
+    match &err {
+        ModelError::Unbalanced {
+            undetermined,
+            overdetermined,
+            equations,
+            unknowns,
+            ..
+        } => {
+            assert_eq!(undetermined, &vec!["x".to_string()], "{err}");
+            assert!(overdetermined.is_empty(), "{err}");
+            assert_eq!((*equations, *unknowns), (8, 9));
+        }
+        other => panic!("expected an unbalanced model, got {other:?}"),
+    }
+    let err = err.to_string();
     assert!(err.contains("8 equations for 9 unknowns"), "{err}");
-    assert!(
-        err.contains("no equation is left for `x`") || err.contains("x"),
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            "model `flat_extra` is not balanced: 8 equations for 9 unknowns",
+            "  under-determined: no equation is left for x",
+        ],
         "{err}"
     );
+}
+
+/// A component two levels down with three equations for its two unknowns.
+struct OverBlock;
+impl Component for OverBlock {
+    fn type_name(&self) -> String {
+        "OverBlock".into()
+    }
+    fn build(&self, s: &mut System) {
+        let a = s.var("a");
+        let b = s.var("b");
+        s.equation(a, 1.0);
+        s.equation(b, 2.0);
+        s.equation(a + b, 3.0);
+    }
+}
+
+/// Holds an [`OverBlock`] as `blk` and a well-determined unknown `c` of its own.
+struct OverPlant;
+impl Component for OverPlant {
+    fn type_name(&self) -> String {
+        "OverPlant".into()
+    }
+    fn build(&self, s: &mut System) {
+        s.add("blk", &OverBlock);
+        let c = s.var("c");
+        s.equation(c, 5.0);
+    }
+}
+
+#[test]
+fn overdetermined_model_names_its_equations_by_full_path() {
+    let mut m = System::new("flat_over");
+    m.add("plant", &OverPlant);
+    m.add("r1", &Resistor(1.0));
+    m.add("gnd", &Ground);
+    m.connect("r1.n", "gnd.p");
+    m.connect("r1.p", "gnd.p");
+    let flat = flatten(&m).unwrap();
+    // 4 (plant) + 4 (r1) + 1 (gnd) + 2 potential equalities + 1 flow sum = 12 equations
+    // for 3 (plant) + 6 (r1) + 2 (gnd) = 11 unknowns.
+    assert_eq!((flat.equations.len(), flat.variables.len()), (12, 11));
+    let err = check_balance(&flat).unwrap_err();
+    // Matching plant.blk.a and plant.blk.b leaves one of the block's three equations
+    // unmatched; alternating paths from it reach the other two, so all three (and no
+    // other equation) are over-determined; no unknown is left without an equation.
+    let expected = [
+        "plant.blk: plant.blk.a = 1",
+        "plant.blk: plant.blk.b = 2",
+        "plant.blk: plant.blk.a + plant.blk.b = 3",
+    ];
+    match &err {
+        ModelError::Unbalanced {
+            model,
+            equations,
+            unknowns,
+            undetermined,
+            overdetermined,
+        } => {
+            assert_eq!(model, "flat_over");
+            assert_eq!((*equations, *unknowns), (12, 11));
+            assert!(undetermined.is_empty(), "{err}");
+            let mut got = overdetermined.clone();
+            got.sort();
+            let mut want: Vec<String> = expected.iter().map(|s| s.to_string()).collect();
+            want.sort();
+            assert_eq!(got, want, "{err}");
+        }
+        other => panic!("expected an unbalanced model, got {other:?}"),
+    }
+    let msg = err.to_string();
+    let lines: Vec<&str> = msg.lines().collect();
+    assert_eq!(lines.len(), 2, "{msg}");
+    assert_eq!(
+        lines[0],
+        "model `flat_over` is not balanced: 12 equations for 11 unknowns"
+    );
+    let prefix = "  over-determined: nothing is left to determine in ";
+    let listed = lines[1]
+        .strip_prefix(prefix)
+        .unwrap_or_else(|| panic!("{msg}"));
+    let mut listed: Vec<&str> = listed.split(", ").collect();
+    listed.sort();
+    let mut want = expected.to_vec();
+    want.sort();
+    assert_eq!(listed, want, "{msg}");
+    assert!(!msg.contains("plant.c"), "{msg}");
+    assert!(!msg.contains("r1."), "{msg}");
 }
 
 #[test]

@@ -44,44 +44,59 @@ enum Pattern {
 /// Recognizes `k a + k' b = 0` with `|k| = |k'|`, and `k a + c = 0` with `c` free of
 /// unknowns and time.
 fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
-    match arena.node(r).clone() {
+    // Read the node in place (no clone): most equations match neither pattern.
+    let (alias, single) = match arena.node(r) {
+        Node::Var(i) => return Some(Pattern::Constant(*i, arena.zero())),
         Node::Sum(ts, c) => {
-            let c = f64::from_bits(c);
-            let vars: Vec<(f64, u32)> = ts
-                .iter()
-                .filter_map(|&(k, t)| match arena.node(t) {
-                    Node::Var(i) => Some((f64::from_bits(k), *i)),
-                    _ => None,
-                })
-                .collect();
-            if ts.len() == 2 && vars.len() == 2 && c == 0.0 {
-                let ((k1, a), (k2, b)) = (vars[0], vars[1]);
-                if k1.abs() == k2.abs() && a != b {
-                    return Some(Pattern::Alias(a, b, -k2 / k1));
+            let c = f64::from_bits(*c);
+            let mut vars = ts.iter().filter_map(|&(k, t)| match arena.node(t) {
+                Node::Var(i) => Some((f64::from_bits(k), *i)),
+                _ => None,
+            });
+            let first = vars.next();
+            let second = vars.next();
+            let more = vars.next().is_some();
+            match (first, second, more) {
+                (Some((k1, a)), Some((k2, b)), false)
+                    if ts.len() == 2 && c == 0.0 && k1.abs() == k2.abs() && a != b =>
+                {
+                    (Some(Pattern::Alias(a, b, -k2 / k1)), None)
                 }
+                (Some((k, a)), None, false) => (None, Some((k, a))),
+                _ => (None, None),
             }
-            if vars.len() == 1 {
-                let (k, a) = vars[0];
-                let x = arena.var(a);
-                let rest = arena.linear_combination(0.0, &[(1.0, r), (-k, x)]);
-                if is_parameter_expression(arena, rest) {
-                    let v = arena.scale(-1.0 / k, rest);
-                    return Some(Pattern::Constant(a, v));
-                }
-            }
-            None
         }
-        Node::Var(i) => Some(Pattern::Constant(i, arena.zero())),
-        _ => None,
+        _ => return None,
+    };
+    if alias.is_some() {
+        return alias;
     }
+    let (k, a) = single?;
+    // `k a + rest = 0` with `rest` of parameters only.
+    let x = arena.var(a);
+    if let Node::Sum(ts, _) = arena.node(r)
+        && !ts
+            .iter()
+            .filter(|&&(_, t)| t != x)
+            .all(|&(_, t)| is_parameter_expression(arena, t))
+    {
+        return None;
+    }
+    let rest = arena.linear_combination(0.0, &[(1.0, r), (-k, x)]);
+    let v = arena.scale(-1.0 / k, rest);
+    Some(Pattern::Constant(a, v))
 }
 
 /// Whether `e` contains only constants and parameters.
 pub(crate) fn is_parameter_expression(arena: &Arena, e: Id) -> bool {
-    arena
-        .leaves(e)
-        .iter()
-        .all(|&l| matches!(arena.node(l), Node::Param(_)))
+    match arena.node(e) {
+        Node::Param(_) | Node::Const(_) => true,
+        Node::Var(_) | Node::Time | Node::Der(_) => false,
+        _ => arena
+            .leaves(e)
+            .iter()
+            .all(|&l| matches!(arena.node(l), Node::Param(_))),
+    }
 }
 
 /// Union-find with the sign of each member relative to its parent.
@@ -163,18 +178,29 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
             None => {}
         }
     }
-    // Members of each set.
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::default();
-    for x in 0..nv as u32 {
-        let (r, _) = sets.find(x);
-        members.entry(r).or_default().push(x);
+    // Members of each set, grouped by root (a counting sort: members of a root in
+    // increasing order, roots in increasing order).
+    let root_of: Vec<u32> = (0..nv as u32).map(|x| sets.find(x).0).collect();
+    let mut start = vec![0u32; nv + 1];
+    for &r in &root_of {
+        start[r as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut grouped = vec![0u32; nv];
+    let mut fill = start.clone();
+    for (x, &r) in root_of.iter().enumerate() {
+        grouped[fill[r as usize] as usize] = x as u32;
+        fill[r as usize] += 1;
     }
     let mut replaced: Vec<Option<Id>> = vec![None; nv];
     let mut map: HashMap<Id, Id> = HashMap::default();
-    let mut roots: Vec<u32> = members.keys().copied().collect();
-    roots.sort_unstable();
-    for root in roots {
-        let ms = &members[&root];
+    for root in 0..nv as u32 {
+        let ms = &grouped[start[root as usize] as usize..start[root as usize + 1] as usize];
+        if ms.is_empty() {
+            continue;
+        }
         let sign_of = |sets: &mut SignedSets, x: u32| sets.find(x).1;
         if let Some(c) = constant[root as usize] {
             for &x in ms {
@@ -230,6 +256,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         flat.variables[rep as usize].state_priority = best_priority;
         flat.starts[rep as usize] = start;
     }
+    map.reserve(replaced.iter().filter(|r| r.is_some()).count());
     for (x, r) in replaced.iter().enumerate() {
         if let Some(r) = *r {
             let leaf = flat.arena.var(x as u32);

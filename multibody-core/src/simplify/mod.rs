@@ -15,6 +15,8 @@ mod reroot;
 mod system;
 
 #[cfg(test)]
+mod linear_block_tests;
+#[cfg(test)]
 mod tests;
 
 use crate::hash::{HashMap, HashSet};

@@ -236,6 +236,22 @@ impl SimplifiedSystem {
     /// The residual equations `0 = F(t, u, u')` as text, one per unknown.
     pub fn equations(&self) -> Vec<String> {
         let names = self.resolver();
+        // A state's derivative is a leaf computed by the sorted steps: show how.
+        let mut computed: HashMap<Id, String> = HashMap::default();
+        for step in &self.schedule.steps {
+            match step {
+                super::causalize::Step::Assign { target, expr, .. } => {
+                    computed.insert(*target, self.arena.display(*expr, &names));
+                }
+                super::causalize::Step::LinearSolve { targets, .. }
+                | super::causalize::Step::SparseLinearSolve { targets, .. } => {
+                    let k = targets.len();
+                    for &t in targets {
+                        computed.insert(t, format!("(solved in a linear system of {k})"));
+                    }
+                }
+            }
+        }
         self.rows
             .iter()
             .map(|r| match r {
@@ -245,7 +261,9 @@ impl SimplifiedSystem {
                 ResidualRow::StateDerivative { state, value } => format!(
                     "der({}) = {}",
                     self.leaf_name(self.unknowns[*state]),
-                    self.arena.display(*value, &names)
+                    computed
+                        .remove(value)
+                        .unwrap_or_else(|| self.arena.display(*value, &names))
                 ),
             })
             .collect()

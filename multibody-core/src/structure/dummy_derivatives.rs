@@ -298,13 +298,18 @@ fn select<'a>(
     let mut cand_match: Vec<Option<usize>> = vec![None; candidates.len()];
     let mut parent: Vec<usize> = vec![0; equations.len()];
     let mut visited: Vec<bool> = vec![false; equations.len()];
+    let mut touched: Vec<usize> = Vec::new();
     let mut kept = Vec::new();
     let mut queue = VecDeque::new();
     for c in 0..candidates.len() {
         if kept.len() == equations.len() {
             break;
         }
-        visited.fill(false);
+        // Reset only what the last search visited (a full fill is quadratic).
+        for &le in &touched {
+            visited[le] = false;
+        }
+        touched.clear();
         queue.clear();
         queue.push_back(c);
         let mut found = None;
@@ -314,6 +319,7 @@ fn select<'a>(
                     continue;
                 }
                 visited[le] = true;
+                touched.push(le);
                 parent[le] = x;
                 match eq_match[le] {
                     None => {

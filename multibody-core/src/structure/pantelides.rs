@@ -111,8 +111,10 @@ struct Search<'a> {
     eq_var: &'a mut Vec<Option<usize>>,
     colored_eqs: Vec<usize>,
     colored_vars: Vec<usize>,
-    eq_mark: Vec<bool>,
-    var_mark: Vec<bool>,
+    /// Visit marks, all false between searches (only the colored entries are reset, so
+    /// a search costs what it visits, not the size of the graph).
+    eq_mark: &'a mut Vec<bool>,
+    var_mark: &'a mut Vec<bool>,
 }
 
 impl Search<'_> {
@@ -259,6 +261,8 @@ pub fn pantelides_with_implicit(
     // A differentiation bound that a solvable system never reaches.
     let limit = 4 * (graph.n_vars + n_original) + 16;
     let mut rounds = 0usize;
+    let mut eq_mark: Vec<bool> = Vec::new();
+    let mut var_mark: Vec<bool> = Vec::new();
 
     for k in 0..n_original {
         if is_definition(k) {
@@ -266,8 +270,8 @@ pub fn pantelides_with_implicit(
         }
         let mut i = k;
         loop {
-            let n_vars = var_diff.len();
-            let n_eqs = adj.len();
+            eq_mark.resize(adj.len(), false);
+            var_mark.resize(var_diff.len(), false);
             let mut s = Search {
                 adj: &adj,
                 var_diff: &var_diff,
@@ -275,13 +279,20 @@ pub fn pantelides_with_implicit(
                 eq_var: &mut eq_var,
                 colored_eqs: Vec::new(),
                 colored_vars: Vec::new(),
-                eq_mark: vec![false; n_eqs],
-                var_mark: vec![false; n_vars],
+                eq_mark: &mut eq_mark,
+                var_mark: &mut var_mark,
             };
-            if s.augment(i) {
+            let augmented = s.augment(i);
+            let (colored_eqs, colored_vars) = (s.colored_eqs, s.colored_vars);
+            for &e in &colored_eqs {
+                eq_mark[e] = false;
+            }
+            for &v in &colored_vars {
+                var_mark[v] = false;
+            }
+            if augmented {
                 break;
             }
-            let (colored_eqs, colored_vars) = (s.colored_eqs, s.colored_vars);
             rounds += 1;
             if rounds > limit {
                 return Err(StructurallySingular {
