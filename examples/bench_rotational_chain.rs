@@ -282,6 +282,14 @@ fn main() -> Result<(), multibody::Error> {
             LinearSolver::SparseLu
         };
         if std::env::var("BENCH_ONLY_OURS").is_ok() {
+            let per = |x: f64| x / n as f64 * 1e6;
+            eprintln!(
+                "n={n} per element (us): flatten {:.2} simplify {:.2} codegen {:.2} init {:.2}",
+                per(times.flatten_s),
+                per(times.simplify_s),
+                per(times.codegen_s),
+                per(init_s)
+            );
             continue;
         }
         let (baseline_solve_s, baseline_steps, base_last) = baseline(n, linear);

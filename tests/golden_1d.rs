@@ -108,7 +108,8 @@ fn assert_golden(model: &System, g: &Golden) -> SimplifiedSystem {
             sizes(g.linear_inline, false),
             sizes(g.linear_inline, true)
         ),
-        "linear systems solved inside by sparse LU: sizes none".to_string(),
+        "linear systems solved inside by sparse LU: sizes none before and none after pre-elimination"
+            .to_string(),
         "linear systems left to the solver: sizes none".to_string(),
         format!(
             "nonlinear systems: sizes {} before and {} after tearing",

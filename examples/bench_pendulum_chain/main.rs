@@ -7,14 +7,18 @@
 //! in this process.
 //!
 //! `cargo run --release --example bench_pendulum_chain [N ...]` prints one JSON object
-//! per line with the keys of the rotational chain benchmark.
+//! per line with the keys of the rotational chain benchmark (compile phases and
+//! initialization the fastest of 3 repetitions), then the growth of the compile time
+//! between the two largest sizes next to that of `N log N`.
 //!
 //! Environment variables: `BENCH_STATS` prints the translation statistics and tape
 //! diagnostics (operation counts, timed residual evaluations, extended-Jacobian
 //! variants), `BENCH_EVAL_ONLY` (with `BENCH_STATS`) only times residual evaluations,
 //! `BENCH_LINEAR_SOLVER=dense|sparse|plain|dq` forces IDA's linear solver,
 //! `BENCH_EVALUATE` folds every parameter (`SimplifyOptions::evaluate_parameters`),
-//! `BENCH_ONLY_OURS` skips the baseline, `BENCH_MAX_TEARING=k` sets
+//! `BENCH_ONLY_OURS` skips the baseline, `BENCH_PRE_FILL=k` sets
+//! `LinearBlockLimits::pre_elimination_fill` (`none` disables it), `BENCH_DAE_FORM`
+//! leaves the acceleration block to IDA as algebraic unknowns, `BENCH_MAX_TEARING=k` sets
 //! `LinearBlockLimits::max_inline_tearing` (at N = 20 the 231-equation acceleration
 //! block torn to 38 variables and solved dense takes 0.41 s against 0.25 s by the
 //! sparse LU).
@@ -159,7 +163,25 @@ fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
     x
 }
 
+/// Debug messages of the library on stderr (with `BENCH_STATS=1`).
+struct StderrLog;
+
+impl log::Log for StderrLog {
+    fn enabled(&self, m: &log::Metadata<'_>) -> bool {
+        m.level() <= log::Level::Debug
+    }
+    fn log(&self, r: &log::Record<'_>) {
+        eprintln!("  [{}] {}", r.level(), r.args());
+    }
+    fn flush(&self) {}
+}
+
+static LOGGER: StderrLog = StderrLog;
+
 fn main() -> Result<(), multibody::Error> {
+    if std::env::var("BENCH_STATS").is_ok() {
+        let _ = log::set_logger(&LOGGER).map(|()| log::set_max_level(log::LevelFilter::Debug));
+    }
     let sizes: Vec<usize> = {
         let args: Vec<usize> = std::env::args()
             .skip(1)
@@ -171,6 +193,7 @@ fn main() -> Result<(), multibody::Error> {
             args
         }
     };
+    let mut compile_rows: Vec<(usize, f64)> = Vec::new();
     for n in sizes {
         let model = chain(n);
         let mut linear_blocks = multibody::LinearBlockLimits::default();
@@ -180,6 +203,9 @@ fn main() -> Result<(), multibody::Error> {
         {
             linear_blocks.max_inline_tearing = k;
         }
+        if let Ok(v) = std::env::var("BENCH_PRE_FILL") {
+            linear_blocks.pre_elimination_fill = v.parse().ok();
+        }
         if std::env::var("BENCH_DAE_FORM").is_ok() {
             linear_blocks.sparse_inline = false;
         }
@@ -188,11 +214,30 @@ fn main() -> Result<(), multibody::Error> {
             linear_blocks,
             ..SimplifyOptions::default()
         };
-        let ssys = structural_simplify_with(&model, &options)?;
-        let times = ssys.statistics().times;
-        let t0 = Instant::now();
+        // Compile phases and initialization: the fastest of 3 repetitions.
+        let mut best: Option<(SimplifiedSystem, multibody::simplify::PhaseTimes, f64)> = None;
+        for _ in 0..3 {
+            let ssys = structural_simplify_with(&model, &options)?;
+            let t = ssys.statistics().times;
+            let t0 = Instant::now();
+            drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
+            let init = t0.elapsed().as_secs_f64();
+            best = Some(match best {
+                None => (ssys, t, init),
+                Some((s, b, i)) => (
+                    s,
+                    multibody::simplify::PhaseTimes {
+                        flatten_s: b.flatten_s.min(t.flatten_s),
+                        simplify_s: b.simplify_s.min(t.simplify_s),
+                        codegen_s: b.codegen_s.min(t.codegen_s),
+                    },
+                    i.min(init),
+                ),
+            });
+        }
+        let (ssys, times, init_s) = best.expect("three repetitions");
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
-        let init_s = t0.elapsed().as_secs_f64();
+        compile_rows.push((n, times.flatten_s + times.simplify_s + times.codegen_s));
         if std::env::var("BENCH_STATS").is_ok() {
             diagnostics(&ssys);
             if std::env::var("BENCH_EVAL_ONLY").is_ok() {
@@ -240,6 +285,14 @@ fn main() -> Result<(), multibody::Error> {
             ssys.states().len(),
         );
     }
+    if let [.., (n0, c0), (n1, c1)] = compile_rows.as_slice() {
+        let nlogn = |n: usize| n as f64 * (n as f64).ln();
+        println!(
+            "{{\"growth_from\": {n0}, \"growth_to\": {n1}, \"n_log_n\": {:.2}, \"compile\": {:.2}}}",
+            nlogn(*n1) / nlogn(*n0),
+            c1 / c0
+        );
+    }
     Ok(())
 }
 
@@ -258,8 +311,8 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
         "{}\n  residual tape {} ops, Jacobian {} non-zeros in {} colours",
         ssys.statistics(),
         c.residual.len(),
-        c.jacobian.nnz(),
-        c.jacobian.n_colors()
+        c.jacobian().nnz(),
+        c.jacobian().n_colors()
     );
     eprintln!(
         "  residual ops ({} runs): {:?}",

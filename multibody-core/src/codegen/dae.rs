@@ -66,8 +66,10 @@ pub struct CompiledDae {
     pub layout: InputLayout,
     /// The residual: one output per unknown.
     pub residual: Tape,
-    /// The Jacobian pattern, colouring and evaluator for [`Self::residual`].
-    pub jacobian: DaeJacobian,
+    /// The Jacobian pattern, colouring and evaluator for [`Self::residual`], built on
+    /// first use when the extended Jacobian serves the sparse solvers (see
+    /// [`Self::jacobian`]).
+    jacobian: std::sync::OnceLock<DaeJacobian>,
     /// The extended Jacobian of [`Self::residual`], kept when it is much sparser than
     /// [`Self::jacobian`] (see [`prefer_extended`]); sparse solvers then use it.
     pub extended: Option<ExtendedJacobian>,
@@ -177,15 +179,30 @@ pub(crate) fn compile_dae(
         }
     }
     let residual = b.build();
-    let jacobian = DaeJacobian::new(&residual, layout.n, layout.u(0), layout.up(0));
-    let extended = Some(ExtendedJacobian::new(
+    let extended = ExtendedJacobian::new(
         &residual,
         layout.n,
         layout.u(0),
         layout.up(0),
         DEFAULT_MAX_FILL,
-    ))
-    .filter(|e| prefer_extended(&jacobian, e));
+    );
+    // The plain Jacobian needs at least as many colours as its densest row has
+    // entries: when that alone rules it out, it is not built now.
+    let jacobian = std::sync::OnceLock::new();
+    let use_extended = if residual.column_degree_reaches(
+        layout.n,
+        layout.u(0),
+        layout.up(0),
+        2 * extended.n_colors(),
+    ) {
+        true
+    } else {
+        let plain = DaeJacobian::new(&residual, layout.n, layout.u(0), layout.up(0));
+        let better = prefer_extended(&plain, &extended);
+        let _ = jacobian.set(plain);
+        better
+    };
+    let extended = Some(extended).filter(|_| use_extended);
     let mut b = builder(arena, &leaves, spec, layout)?;
     let mut observed_names = Vec::with_capacity(spec.observed.len());
     for (name, e) in spec.observed {
@@ -201,6 +218,21 @@ pub(crate) fn compile_dae(
         observed,
         observed_names,
     })
+}
+
+impl CompiledDae {
+    /// The Jacobian pattern, colouring and evaluator for [`Self::residual`] (the
+    /// reduced one, without the extended Jacobian's intermediate unknowns).
+    pub fn jacobian(&self) -> &DaeJacobian {
+        self.jacobian.get_or_init(|| {
+            DaeJacobian::new(
+                &self.residual,
+                self.layout.n,
+                self.layout.u(0),
+                self.layout.up(0),
+            )
+        })
+    }
 }
 
 /// Whether the extended Jacobian is worth its extra rows: it must need at most half the

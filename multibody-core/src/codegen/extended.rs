@@ -27,7 +27,7 @@ use super::tape::{Op, Tape, Workspace, solve_linear};
 
 /// Entries an elimination may add and still be made (default of
 /// [`ExtendedJacobian::new`]'s `max_fill`).
-pub const DEFAULT_MAX_FILL: usize = 0;
+pub const DEFAULT_MAX_FILL: usize = 8;
 
 const NO_CUT: u32 = u32::MAX;
 

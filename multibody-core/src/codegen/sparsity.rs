@@ -92,6 +92,72 @@ impl Tape {
     }
 }
 
+impl Tape {
+    /// Whether some output among the first `n` depends on at least `k` distinct columns
+    /// of the DAE Jacobian (`u_j` at input slot `u_offset + j` and `u'_j` at
+    /// `yp_offset + j` are column `j`). The sets are cut at `k` columns, so this costs
+    /// the tape length times `k` where [`dependencies`](Tape::dependencies) can cost
+    /// its square (a chain's acceleration block depends on every coordinate).
+    pub fn column_degree_reaches(
+        &self,
+        n: usize,
+        u_offset: usize,
+        yp_offset: usize,
+        k: usize,
+    ) -> bool {
+        if k == 0 {
+            return true;
+        }
+        let column = |s: u32| -> Option<u32> {
+            let s = s as usize;
+            if s >= u_offset && s < u_offset + n {
+                Some((s - u_offset) as u32)
+            } else if s >= yp_offset && s < yp_offset + n {
+                Some((s - yp_offset) as u32)
+            } else {
+                None
+            }
+        };
+        let cap = |mut v: Vec<u32>| {
+            v.truncate(k);
+            v
+        };
+        let len = self.ops.len();
+        let mut sets: Vec<Vec<u32>> = vec![Vec::new(); len];
+        let mut operands: Vec<u32> = Vec::new();
+        for (i, &op) in self.ops.iter().enumerate() {
+            operands.clear();
+            op.for_each_operand(&self.ls, |r| operands.push(r));
+            match op {
+                Op::Const(_) | Op::LsPart => {}
+                Op::Input(s) => sets[i] = column(s).into_iter().collect(),
+                Op::LinearSolve(s) => {
+                    let mut all: Vec<u32> = Vec::new();
+                    for &r in &operands {
+                        all = cap(merge(&all, &sets[r as usize]));
+                    }
+                    let size = self.ls[s as usize].k;
+                    for j in 1..size {
+                        sets[i + j] = all.clone();
+                    }
+                    sets[i] = all;
+                }
+                _ => {
+                    let mut acc: Vec<u32> = Vec::new();
+                    for &r in &operands {
+                        acc = cap(merge(&acc, &sets[r as usize]));
+                    }
+                    sets[i] = acc;
+                }
+            }
+        }
+        self.outputs
+            .iter()
+            .take(n)
+            .any(|&o| sets[o as usize].len() >= k)
+    }
+}
+
 /// Directions evaluated per forward pass of [`DaeJacobian::eval`].
 pub(crate) const MAX_LANES: usize = 16;
 

@@ -106,8 +106,12 @@ fn plain_dense(tape: &Tape, n: usize, x: &[f64], cj: f64) -> Vec<Vec<f64>> {
 }
 
 fn check_solve(n: usize, with_solve: bool) -> ExtendedJacobian {
+    check_solve_with(n, with_solve, DEFAULT_MAX_FILL)
+}
+
+fn check_solve_with(n: usize, with_solve: bool, max_fill: usize) -> ExtendedJacobian {
     let tape = chain_tape(n, with_solve);
-    let ext = ExtendedJacobian::new(&tape, n, 1, 1 + n, DEFAULT_MAX_FILL);
+    let ext = ExtendedJacobian::new(&tape, n, 1, 1 + n, max_fill);
     let dim = ext.dimension();
     let mut x = vec![0.3];
     for k in 0..2 * n {
@@ -150,8 +154,10 @@ fn extended_solve_equals_exact_jacobian_solve() {
 
 #[test]
 fn extended_rows_and_colours_stay_bounded_along_a_chain() {
-    let small = check_solve(20, true);
-    let large = check_solve(80, true);
+    // Without fill every intermediate of the solve is cut: the colours are the same
+    // at any length.
+    let small = check_solve_with(20, true, 0);
+    let large = check_solve_with(80, true, 0);
     assert_eq!(small.n_colors(), large.n_colors());
     assert!(large.n_colors() <= 8, "{} colours", large.n_colors());
     // Entries grow linearly: per unknown the same budget.
@@ -161,6 +167,24 @@ fn extended_rows_and_colours_stay_bounded_along_a_chain() {
         "{} vs {}",
         per(&large),
         per(&small)
+    );
+    // With the default fill fewer intermediates are cut; colours and entries per
+    // unknown stay bounded all the same.
+    let (a, b, c) = (
+        check_solve(20, true),
+        check_solve(80, true),
+        check_solve(320, true),
+    );
+    for e in [&a, &b, &c] {
+        assert!(e.n_colors() <= 12, "{} colours", e.n_colors());
+        assert!(e.dimension() < large.dimension() * 4, "{}", e.dimension());
+    }
+    assert!(
+        per(&c) <= per(&b) * 1.1 && per(&b) <= per(&a) * 1.5,
+        "{} {} {}",
+        per(&a),
+        per(&b),
+        per(&c)
     );
     // The plain Jacobian of the same chain fills up.
     let tape = chain_tape(80, true);

@@ -18,6 +18,8 @@ use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::maximum_matching;
 use crate::structure::tearing::{TearingEquation, tear_with_priority};
 
+use super::pre_eliminate::{LinearRow, Reduced, back_substitution, pre_eliminate};
+
 /// Limits deciding where linear blocks are solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LinearBlockLimits {
@@ -33,6 +35,10 @@ pub struct LinearBlockLimits {
     /// Newton iteration on the states only: on a 20-link pendulum it needed 40 % fewer
     /// iterations and a third of the Jacobians of the DAE form.
     pub sparse_inline: bool,
+    /// Before a block goes to the sparse LU, its unknowns with coefficients that cannot
+    /// vanish are eliminated symbolically where that adds at most this many entries
+    /// (Markowitz cost); `None` keeps the whole block for the LU (default `Some(8)`).
+    pub pre_elimination_fill: Option<usize>,
 }
 
 impl Default for LinearBlockLimits {
@@ -41,6 +47,7 @@ impl Default for LinearBlockLimits {
             max_inline_size: 400,
             max_inline_tearing: 24,
             sparse_inline: true,
+            pre_elimination_fill: Some(8),
         }
     }
 }
@@ -311,11 +318,11 @@ fn solve_block(
     if linear {
         let too_big = k > limits.max_inline_size || torn.len() > limits.max_inline_tearing;
         if too_big && limits.sparse_inline {
-            sparse_linear(arena, block_eqs, vars, out);
+            let left = sparse_linear(arena, block_eqs, eq_ids, vars, limits, temps, out);
             out.blocks.push(BlockInfo {
                 kind: BlockKind::LinearSparse,
                 size: k,
-                torn: k,
+                torn: left,
             });
             return;
         }
@@ -502,27 +509,87 @@ fn inline_linear(
 
 /// A linear block solved inside by a sparse LU: `A` holds the coefficients of the
 /// block's unknowns in its equations, `c` the equations with the unknowns set to zero.
-fn sparse_linear(arena: &mut Arena, block_eqs: &[Id], vars: &[Id], out: &mut Schedule) {
+/// Emits the sparse LU solve of a linear block after symbolic pre-elimination, and the
+/// back substitution of the eliminated unknowns; returns how many unknowns the LU keeps.
+fn sparse_linear(
+    arena: &mut Arena,
+    block_eqs: &[Id],
+    eq_ids: &[usize],
+    vars: &[Id],
+    limits: LinearBlockLimits,
+    temps: &mut Temporaries<'_>,
+    out: &mut Schedule,
+) -> usize {
     let local: HashMap<Id, usize> = vars.iter().enumerate().map(|(i, &v)| (v, i)).collect();
     let zero = arena.zero();
     let zeros: HashMap<Id, Id> = vars.iter().map(|&v| (v, zero)).collect();
-    let mut entries = Vec::new();
-    let mut c = Vec::with_capacity(block_eqs.len());
+    let mut rows = Vec::with_capacity(block_eqs.len());
     let mut memo = HashMap::default();
-    for (row, &r) in block_eqs.iter().enumerate() {
+    for &r in block_eqs {
+        let mut entries = Vec::new();
         for l in arena.leaves(r) {
             if let Some(&col) = local.get(&l) {
                 let coefficient = arena.diff(r, l);
                 if arena.as_const(coefficient) != Some(0.0) {
-                    entries.push((row, col, coefficient));
+                    entries.push((col, coefficient));
                 }
             }
         }
-        c.push(arena.substitute_leaves_memo(r, &zeros, &mut memo));
+        let c = arena.substitute_leaves_memo(r, &zeros, &mut memo);
+        rows.push(LinearRow { entries, c });
     }
-    out.steps.push(Step::SparseLinearSolve {
-        targets: vars.to_vec(),
-        entries,
-        c,
-    });
+    let params = temps.params;
+    let mut compact = |arena: &mut Arena, e: Id| -> Id {
+        // A sum of more than two terms becomes a temporary computed before the solve.
+        match arena.node(e) {
+            Node::Sum(ts, _) if ts.len() > 2 => {
+                let t = temps.fresh(arena);
+                out.steps.push(Step::Assign {
+                    target: t,
+                    expr: e,
+                    equation: usize::MAX,
+                });
+                t
+            }
+            _ => e,
+        }
+    };
+    let reduced = match limits.pre_elimination_fill {
+        Some(fill) => pre_eliminate(arena, rows, vars.len(), params, fill, &mut compact),
+        None => Reduced {
+            eliminations: Vec::new(),
+            rows: rows.into_iter().enumerate().collect(),
+            vars: (0..vars.len()).collect(),
+        },
+    };
+    if !reduced.vars.is_empty() {
+        let position: HashMap<usize, usize> = reduced
+            .vars
+            .iter()
+            .enumerate()
+            .map(|(p, &j)| (j, p))
+            .collect();
+        let mut entries = Vec::new();
+        let mut c = Vec::with_capacity(reduced.rows.len());
+        for (row, (_, r)) in reduced.rows.iter().enumerate() {
+            for &(j, a) in &r.entries {
+                entries.push((row, position[&j], a));
+            }
+            c.push(r.c);
+        }
+        out.steps.push(Step::SparseLinearSolve {
+            targets: reduced.vars.iter().map(|&j| vars[j]).collect(),
+            entries,
+            c,
+        });
+    }
+    for e in reduced.eliminations.iter().rev() {
+        let value = back_substitution(arena, e, vars);
+        out.steps.push(Step::Assign {
+            target: vars[e.var],
+            expr: value,
+            equation: eq_ids[e.row],
+        });
+    }
+    reduced.vars.len()
 }

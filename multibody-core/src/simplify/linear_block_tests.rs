@@ -218,11 +218,12 @@ fn block_above_the_limits_is_solved_by_sparse_lu_inside() {
         LinearBlockLimits {
             max_inline_size: 2,
             sparse_inline: true,
+            pre_elimination_fill: None,
             ..LinearBlockLimits::default()
         },
     );
     let st = ssys.statistics();
-    assert_eq!(st.linear_sparse, vec![3], "{st}");
+    assert_eq!(st.linear_sparse, vec![(3, 3)], "{st}");
     assert!(st.linear_inline.is_empty(), "{st}");
     assert!(st.linear_solver.is_empty(), "{st}");
     assert_eq!(st.algebraic, 0, "{st}");
@@ -245,5 +246,39 @@ fn block_above_the_limits_is_solved_by_sparse_lu_inside() {
     let mut targets = loop_targets(&ssys);
     targets.sort();
     assert_eq!(targets, vec!["i1", "i2", "vm"]);
+    solve_and_check(&ssys);
+}
+
+/// With symbolic pre-elimination (the default) the three coefficients are parameters
+/// that are nonzero for their defaults: `i1` goes from the source branch and `i2` from
+/// the load (each creating at most one entry), which leaves `vm` alone in the shunt
+/// equation. Nothing is left for the LU; the three unknowns are assignments.
+#[test]
+fn pre_elimination_leaves_nothing_for_the_lu() {
+    let ssys = simplify(
+        "lin_pre",
+        LinearBlockLimits {
+            max_inline_size: 2,
+            sparse_inline: true,
+            ..LinearBlockLimits::default()
+        },
+    );
+    let st = ssys.statistics();
+    assert_eq!(st.linear_sparse, vec![(3, 0)], "{st}");
+    assert!(
+        st.to_string()
+            .contains("sparse LU: sizes {3} before and {0} after pre-elimination"),
+        "{st}"
+    );
+    assert!(
+        !ssys
+            .schedule
+            .steps
+            .iter()
+            .any(|s| matches!(s, Step::SparseLinearSolve { .. })),
+        "{:?}",
+        ssys.schedule.steps
+    );
+    assert_eq!(ssys.unknowns(), vec!["x"]);
     solve_and_check(&ssys);
 }

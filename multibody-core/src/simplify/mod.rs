@@ -10,6 +10,7 @@ mod alias;
 pub mod causalize;
 mod error;
 mod evaluate;
+mod pre_eliminate;
 pub(crate) mod reduce;
 mod reroot;
 mod system;

@@ -66,8 +66,9 @@ pub struct Statistics {
     pub assignments: usize,
     /// Linear blocks solved inside: (size, tearing variables).
     pub linear_inline: Vec<(usize, usize)>,
-    /// Linear blocks solved inside by a sparse LU: sizes.
-    pub linear_sparse: Vec<usize>,
+    /// Linear blocks solved inside by a sparse LU: (size, unknowns left to the LU after
+    /// symbolic pre-elimination).
+    pub linear_sparse: Vec<(usize, usize)>,
     /// Linear blocks left to the solver: sizes.
     pub linear_solver: Vec<usize>,
     /// Nonlinear blocks: (size, tearing variables).
@@ -83,7 +84,7 @@ impl Statistics {
                 BlockKind::Explicit => {}
                 BlockKind::LinearInline => self.linear_inline.push((b.size, b.torn)),
                 BlockKind::LinearSolver => self.linear_solver.push(b.size),
-                BlockKind::LinearSparse => self.linear_sparse.push(b.size),
+                BlockKind::LinearSparse => self.linear_sparse.push((b.size, b.torn)),
                 BlockKind::Nonlinear => self.nonlinear.push((b.size, b.torn)),
             }
         }
@@ -134,11 +135,11 @@ impl fmt::Display for Statistics {
             sizes(&self.linear_inline, false),
             sizes(&self.linear_inline, true)
         )?;
-        let sparse: Vec<(usize, usize)> = self.linear_sparse.iter().map(|&s| (s, s)).collect();
         writeln!(
             f,
-            "  linear systems solved inside by sparse LU: sizes {}",
-            sizes(&sparse, false)
+            "  linear systems solved inside by sparse LU: sizes {} before and {} after pre-elimination",
+            sizes(&self.linear_sparse, false),
+            sizes(&self.linear_sparse, true)
         )?;
         let solver: Vec<(usize, usize)> = self.linear_solver.iter().map(|&s| (s, s)).collect();
         writeln!(

@@ -298,7 +298,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     }
     let outcome = newton(
         &compiled.residual,
-        &compiled.jacobian,
+        compiled.jacobian(),
         &mut inputs,
         layout.u(0),
         NewtonOptions::default(),

@@ -372,7 +372,8 @@ pub(crate) struct CompiledFunctions<'c> {
     c: &'c CompiledDae,
     inputs: Vec<f64>,
     ws: Workspace,
-    jws: JacobianWorkspace,
+    /// Workspace of the plain Jacobian, made on first use.
+    jws: Option<JacobianWorkspace>,
     /// Workspace of the extended Jacobian, when it is used.
     ews: Option<ExtendedWorkspace>,
     layout: InputLayout,
@@ -391,7 +392,7 @@ impl<'c> CompiledFunctions<'c> {
             c,
             inputs,
             ws: c.residual.workspace(),
-            jws: c.jacobian.workspace(&c.residual),
+            jws: None,
             ews: c
                 .extended
                 .as_ref()
@@ -440,8 +441,8 @@ impl DaeFunctions for CompiledFunctions<'_> {
         match (&self.ews, &self.c.extended) {
             (Some(_), Some(e)) => Some((e.col_ptr.clone(), e.row_idx.clone())),
             _ => Some((
-                self.c.jacobian.col_ptr.clone(),
-                self.c.jacobian.row_idx.clone(),
+                self.c.jacobian().col_ptr.clone(),
+                self.c.jacobian().row_idx.clone(),
             )),
         }
     }
@@ -464,10 +465,14 @@ impl DaeFunctions for CompiledFunctions<'_> {
         self.load(t, y, yp);
         match (&mut self.ews, &self.c.extended) {
             (Some(ews), Some(e)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
-            _ => self
-                .c
-                .jacobian
-                .eval(&self.c.residual, &self.inputs, cj, &mut self.jws, values),
+            _ => {
+                let c = self.c;
+                let jws = self
+                    .jws
+                    .get_or_insert_with(|| c.jacobian().workspace(&c.residual));
+                c.jacobian()
+                    .eval(&c.residual, &self.inputs, cj, jws, values)
+            }
         }
     }
 }

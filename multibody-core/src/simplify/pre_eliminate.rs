@@ -1,0 +1,215 @@
+//! Symbolic pre-elimination of a sparse linear block: before the block goes to the
+//! sparse LU at run time, unknowns whose equation has a coefficient that cannot vanish
+//! (a nonzero constant, or an expression of parameters that is nonzero for their
+//! defaults, as tearing requires) are eliminated at compile time, in Markowitz order and
+//! only where the elimination creates at most `max_fill` new entries.
+//!
+//! On a chain of bodies most unknowns of the acceleration block (cut forces and torques,
+//! body accelerations) are eliminated this way without fill: the LU then factorizes a
+//! block a few times smaller, and the eliminated unknowns are computed afterwards by
+//! plain assignments (back substitution), compiled with their constant coefficients
+//! folded.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use crate::expr::{Arena, Id};
+
+use super::causalize::safe_coefficient;
+
+/// A linear equation `sum(coefficient * x_var) + c = 0` of the block.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LinearRow {
+    /// `(unknown index, coefficient)`, coefficients free of the block's unknowns.
+    pub entries: Vec<(usize, Id)>,
+    /// The part free of the block's unknowns.
+    pub c: Id,
+}
+
+/// One unknown solved from one row: `x_var = -(c + sum(coefficient * x_k)) / pivot`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Elimination {
+    /// The unknown.
+    pub var: usize,
+    /// The row it was solved from (index into the block's rows).
+    pub row: usize,
+    /// The pivot coefficient.
+    pub pivot: Id,
+    /// The row's other entries at the time of elimination.
+    pub others: Vec<(usize, Id)>,
+    /// The row's constant part at that time.
+    pub c: Id,
+}
+
+/// What remains after pre-elimination.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Reduced {
+    /// Eliminations in order; back substitution runs them in reverse.
+    pub eliminations: Vec<Elimination>,
+    /// Rows left for the LU (indices into the block's rows), with their updated forms.
+    pub rows: Vec<(usize, LinearRow)>,
+    /// Unknowns left for the LU (indices into the block's unknowns), increasing.
+    pub vars: Vec<usize>,
+}
+
+/// Eliminates what it can from `rows` (over `n_vars` unknowns). `params` are the default
+/// parameter values that decide whether a coefficient may vanish. `compact` may replace
+/// the coefficients and the constant part of a pivot row by leaves computed beforehand
+/// (temporaries): scaling a sum by a constant distributes over its terms, so without
+/// it the constant parts would grow along a chain of eliminations.
+pub(crate) fn pre_eliminate(
+    arena: &mut Arena,
+    rows: Vec<LinearRow>,
+    n_vars: usize,
+    params: &[f64],
+    max_fill: usize,
+    compact: &mut dyn FnMut(&mut Arena, Id) -> Id,
+) -> Reduced {
+    let mut rows = rows;
+    let mut row_alive = vec![true; rows.len()];
+    let mut var_alive = vec![true; n_vars];
+    // Rows that contain each unknown (may hold stale rows; checked on use).
+    let mut col_rows: Vec<Vec<usize>> = vec![Vec::new(); n_vars];
+    let mut col_count = vec![0usize; n_vars];
+    for (i, r) in rows.iter().enumerate() {
+        for &(k, _) in &r.entries {
+            col_rows[k].push(i);
+            col_count[k] += 1;
+        }
+    }
+    let coefficient = |row: &LinearRow, var: usize| {
+        row.entries
+            .iter()
+            .find(|&&(k, _)| k == var)
+            .map(|&(_, a)| a)
+    };
+    let mut eliminations = Vec::new();
+    loop {
+        // Candidates by Markowitz cost (fill an elimination can create).
+        let mut heap = BinaryHeap::new();
+        for (i, r) in rows.iter().enumerate() {
+            if !row_alive[i] {
+                continue;
+            }
+            for &(j, a) in &r.entries {
+                let cost = (r.entries.len() - 1) * (col_count[j] - 1);
+                if cost <= max_fill && safe_coefficient(arena, a, params) {
+                    heap.push(Reverse((cost, i, j)));
+                }
+            }
+        }
+        let before = eliminations.len();
+        while let Some(Reverse((cost, i, j))) = heap.pop() {
+            if !row_alive[i] || !var_alive[j] {
+                continue;
+            }
+            let Some(p) = coefficient(&rows[i], j) else {
+                continue;
+            };
+            let now = (rows[i].entries.len() - 1) * (col_count[j] - 1);
+            if now > max_fill || !safe_coefficient(arena, p, params) {
+                continue;
+            }
+            if now > cost {
+                heap.push(Reverse((now, i, j)));
+                continue;
+            }
+            let mut pivot_row = rows[i].clone();
+            pivot_row.c = compact(arena, pivot_row.c);
+            for e in pivot_row.entries.iter_mut() {
+                if e.0 != j {
+                    e.1 = compact(arena, e.1);
+                }
+            }
+            let others: Vec<(usize, Id)> = pivot_row
+                .entries
+                .iter()
+                .copied()
+                .filter(|&(k, _)| k != j)
+                .collect();
+            let one = arena.one();
+            let inv = arena.div(one, p);
+            let targets: Vec<usize> = col_rows[j]
+                .iter()
+                .copied()
+                .filter(|&r| r != i && row_alive[r])
+                .collect();
+            for r in targets {
+                let Some(pos) = rows[r].entries.iter().position(|&(k, _)| k == j) else {
+                    continue;
+                };
+                let (_, a_rj) = rows[r].entries.remove(pos);
+                col_count[j] -= 1;
+                let f = arena.mul(a_rj, inv);
+                for &(k, a_ik) in &others {
+                    let delta = arena.mul(f, a_ik);
+                    match rows[r].entries.iter().position(|&(kk, _)| kk == k) {
+                        Some(q) => {
+                            let v = arena.sub(rows[r].entries[q].1, delta);
+                            if arena.as_const(v) == Some(0.0) {
+                                rows[r].entries.remove(q);
+                                col_count[k] -= 1;
+                            } else {
+                                rows[r].entries[q].1 = v;
+                            }
+                        }
+                        None => {
+                            let v = arena.neg(delta);
+                            rows[r].entries.push((k, v));
+                            col_rows[k].push(r);
+                            col_count[k] += 1;
+                        }
+                    }
+                }
+                let fc = arena.mul(f, pivot_row.c);
+                rows[r].c = arena.sub(rows[r].c, fc);
+            }
+            row_alive[i] = false;
+            var_alive[j] = false;
+            for &(k, _) in &pivot_row.entries {
+                col_count[k] -= 1;
+            }
+            eliminations.push(Elimination {
+                var: j,
+                row: i,
+                pivot: p,
+                others,
+                c: pivot_row.c,
+            });
+        }
+        if eliminations.len() == before {
+            break;
+        }
+    }
+    let rows_left = rows
+        .into_iter()
+        .enumerate()
+        .filter(|&(i, _)| row_alive[i])
+        .collect();
+    let vars = (0..n_vars).filter(|&j| var_alive[j]).collect();
+    Reduced {
+        eliminations,
+        rows: rows_left,
+        vars,
+    }
+}
+
+/// The value of an eliminated unknown: `-(c + sum(coefficient * x_k)) / pivot`, with
+/// `x` the leaves of the block's unknowns.
+pub(crate) fn back_substitution(arena: &mut Arena, e: &Elimination, x: &[Id]) -> Id {
+    let mut terms: Vec<(f64, Id)> = Vec::with_capacity(e.others.len() + 1);
+    terms.push((1.0, e.c));
+    for &(k, a) in &e.others {
+        let t = arena.mul(a, x[k]);
+        terms.push((1.0, t));
+    }
+    let sum = arena.linear_combination(0.0, &terms);
+    let one = arena.one();
+    let inv = arena.div(one, e.pivot);
+    let v = arena.mul(sum, inv);
+    arena.neg(v)
+}
+
+#[cfg(test)]
+#[path = "pre_eliminate_tests.rs"]
+mod tests;
