@@ -7,7 +7,7 @@
 //! per line: `n`, `flatten_s`, `simplify_s`, `codegen_s`, `init_s`, `solve_s`,
 //! `compile_s` (flatten through codegen), `steps`, `baseline_solve_s`, `baseline_steps`
 //! and `solve_ratio` (ours / baseline). Compile phases and initialization are the
-//! fastest of 5 repetitions (3 above N = 1000). A last line gives the growth of each
+//! fastest of 4 rounds over all sizes. A last line gives the growth of each
 //! phase between the two largest sizes next to that of `N log N` (`n_log_n`).
 
 use std::time::Instant;
@@ -230,20 +230,20 @@ fn main() -> Result<(), multibody::Error> {
     };
     // Per size: n, flatten, simplify, codegen, init and solve seconds (for the growth line).
     let mut rows: Vec<[f64; 6]> = Vec::new();
-    for n in sizes {
-        let model = chain(n);
-        // Compile phases and initialization: the fastest of a few repetitions (these
-        // machines are noisy; the first run also pays for first-touch page faults).
-        let repeats = if n <= 1000 { 5 } else { 3 };
-        let mut best: Option<(SimplifiedSystem, PhaseTimes, f64)> = None;
-        for _ in 0..repeats {
-            let ssys = structural_simplify(&model)?;
+    // Compile phases and initialization: the fastest of several rounds, the sizes
+    // interleaved within each round so that a slow spell of this noisy machine hits
+    // every size alike (and the first run's page faults count for none).
+    let models: Vec<System> = sizes.iter().map(|&n| chain(n)).collect();
+    let mut best: Vec<Option<(SimplifiedSystem, PhaseTimes, f64)>> =
+        sizes.iter().map(|_| None).collect();
+    for _round in 0..4 {
+        for (k, model) in models.iter().enumerate() {
+            let ssys = structural_simplify(model)?;
             let times = ssys.statistics().times;
             let t0 = Instant::now();
-            let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
+            drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
             let init_s = t0.elapsed().as_secs_f64();
-            drop(prob);
-            best = Some(match best {
+            best[k] = Some(match best[k].take() {
                 None => (ssys, times, init_s),
                 Some((s, b, i)) => (
                     s,
@@ -256,7 +256,9 @@ fn main() -> Result<(), multibody::Error> {
                 ),
             });
         }
-        let (ssys, times, init_s) = best.expect("at least one repetition");
+    }
+    for (n, compiled) in sizes.iter().copied().zip(best) {
+        let (ssys, times, init_s) = compiled.expect("four rounds");
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
         let choice = if ssys.unknowns().len() <= 24 {
             LinearSolverChoice::Dense

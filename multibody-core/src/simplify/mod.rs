@@ -93,7 +93,6 @@ pub fn structural_simplify_with(
     let aliases = alias::eliminate_aliases(&mut flat);
     let nv = flat.variables.len();
     let kept: Vec<bool> = aliases.replaced.iter().map(Option::is_none).collect();
-    let names: Vec<String> = flat.variables.iter().map(|v| v.name.clone()).collect();
     let priority: Vec<f64> = flat.variables.iter().map(|v| v.state_priority).collect();
     // Equations that define a variable with a derivative rule (an orientation matrix
     // entry) are solved for it and never differentiated.
@@ -143,6 +142,7 @@ pub fn structural_simplify_with(
         parameters: &flat.parameters,
     };
     let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
+    let names: Vec<&str> = flat.variables.iter().map(|v| v.name.as_str()).collect();
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
@@ -336,14 +336,22 @@ pub fn structural_simplify_with(
     warnings.sort();
     warnings.dedup();
     let states = reduced.states.clone();
+    // The flat model's vectors move into the result (no copy of every name).
+    let crate::model::FlatSystem {
+        variables,
+        parameters,
+        parameter_values,
+        arena,
+        ..
+    } = flat;
     Ok(SimplifiedSystem {
         name,
-        variables: flat.variables.clone(),
-        parameters: flat.parameters.clone(),
+        variables,
+        parameters,
         evaluated_parameters,
-        parameter_values: flat.parameter_values.clone(),
+        parameter_values,
         starts,
-        replaced: aliases.replaced.clone(),
+        replaced: aliases.replaced,
         slots: reduced.slots,
         slot_of: reduced.slot_of,
         var_diff: reduced.var_diff,
@@ -358,7 +366,7 @@ pub fn structural_simplify_with(
         compiled,
         statistics,
         warnings,
-        arena: flat.arena,
+        arena,
     })
 }
 

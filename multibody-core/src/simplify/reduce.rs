@@ -67,7 +67,7 @@ fn leaf_derivative(arena: &mut Arena, leaf: Id, dmap: &HashMap<Id, Id>) -> Id {
 /// Builds slots for the leaves of the equations and for every kept variable.
 pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,
-    pub names: &'a [String],
+    pub names: &'a [&'a str],
     pub slots: Vec<Slot>,
     pub slot_of: HashMap<Id, usize>,
 }
@@ -86,9 +86,9 @@ impl SlotTable<'_> {
             }
             n => panic!("slot of a non-variable leaf {n:?}"),
         };
-        let base = &self.names[var];
+        let base = self.names[var];
         let name = match self.arena.node(leaf) {
-            Node::Var(_) => base.clone(),
+            Node::Var(_) => base.to_string(),
             _ => {
                 let inner = match self.arena.node(leaf) {
                     Node::Der(i) => *i,
@@ -128,7 +128,7 @@ pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {
 pub(crate) struct ReduceInput<'a> {
     pub arena: &'a mut Arena,
     /// Flat variable names.
-    pub names: &'a [String],
+    pub names: &'a [&'a str],
     /// State priority and whether each flat variable is kept (not eliminated).
     pub priority: &'a [f64],
     pub kept: &'a [bool],
