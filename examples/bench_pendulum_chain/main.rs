@@ -7,7 +7,11 @@
 //! in this process.
 //!
 //! `cargo run --release --example bench_pendulum_chain [N ...]` prints one JSON object
-//! per line with the keys of the rotational chain benchmark (compile phases and
+//! per line with the keys of the rotational chain benchmark for the model with tunable
+//! parameters (the default), and `evaluated_compile_s`, `evaluated_solve_s`,
+//! `evaluated_steps` and `evaluated_solve_ratio` for the same model compiled with
+//! every parameter folded in as a constant (`SimplifyOptions::evaluate_parameters`),
+//! as the hand-written residual has them (compile phases and
 //! initialization the fastest of 3 repetitions), then the growth of the compile time
 //! between the two largest sizes next to that of `N log N`.
 //!
@@ -15,7 +19,6 @@
 //! diagnostics (operation counts, timed residual evaluations, extended-Jacobian
 //! variants), `BENCH_EVAL_ONLY` (with `BENCH_STATS`) only times residual evaluations,
 //! `BENCH_LINEAR_SOLVER=dense|sparse|plain|dq` forces IDA's linear solver,
-//! `BENCH_EVALUATE` folds every parameter (`SimplifyOptions::evaluate_parameters`),
 //! `BENCH_ONLY_OURS` skips the baseline, `BENCH_PRE_FILL=k` sets
 //! `LinearBlockLimits::pre_elimination_fill` (`none` disables it), `BENCH_DAE_FORM`
 //! leaves the acceleration block to IDA as algebraic unknowns, `BENCH_MAX_TEARING=k` sets
@@ -210,40 +213,9 @@ fn main() -> Result<(), multibody::Error> {
             linear_blocks.sparse_inline = false;
         }
         let options = SimplifyOptions {
-            evaluate_parameters: std::env::var("BENCH_EVALUATE").is_ok(),
             linear_blocks,
             ..SimplifyOptions::default()
         };
-        // Compile phases and initialization: the fastest of 3 repetitions.
-        let mut best: Option<(SimplifiedSystem, multibody::simplify::PhaseTimes, f64)> = None;
-        for _ in 0..3 {
-            let ssys = structural_simplify_with(&model, &options)?;
-            let t = ssys.statistics().times;
-            let t0 = Instant::now();
-            drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
-            let init = t0.elapsed().as_secs_f64();
-            best = Some(match best {
-                None => (ssys, t, init),
-                Some((s, b, i)) => (
-                    s,
-                    multibody::simplify::PhaseTimes {
-                        flatten_s: b.flatten_s.min(t.flatten_s),
-                        simplify_s: b.simplify_s.min(t.simplify_s),
-                        codegen_s: b.codegen_s.min(t.codegen_s),
-                    },
-                    i.min(init),
-                ),
-            });
-        }
-        let (ssys, times, init_s) = best.expect("three repetitions");
-        let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
-        compile_rows.push((n, times.flatten_s + times.simplify_s + times.codegen_s));
-        if std::env::var("BENCH_STATS").is_ok() {
-            diagnostics(&ssys);
-            if std::env::var("BENCH_EVAL_ONLY").is_ok() {
-                continue;
-            }
-        }
         let opts = SolverOptions {
             rtol: RTOL,
             atol: ATOL,
@@ -256,33 +228,53 @@ fn main() -> Result<(), multibody::Error> {
             },
             ..SolverOptions::default()
         };
-        let t1 = Instant::now();
-        let sol = prob.solve(&opts)?;
-        let solve_s = t1.elapsed().as_secs_f64();
-        let compile_s = times.flatten_s + times.simplify_s + times.codegen_s;
-        let ours_q1 = sol.at("rev1.phi", T_CHECK)?;
-        log_stats(sol.statistics());
+        // Parameters tunable (the default), then every parameter folded in as a
+        // constant, as the hand-written residual has them.
+        let Some(tunable) = run(&model, &options, &opts)? else {
+            continue;
+        };
+        let evaluated = run(
+            &model,
+            &SimplifyOptions {
+                evaluate_parameters: true,
+                ..options
+            },
+            &opts,
+        )?
+        .expect("not only evaluating");
+        compile_rows.push((n, tunable.compile_s));
         let baseline_part = if n <= 100 && std::env::var("BENCH_ONLY_OURS").is_err() {
             let (b, steps, q1) = baseline(n);
-            assert!(
-                (q1 - ours_q1).abs() < 1e-3 * (1.0 + q1.abs()),
-                "the two solutions disagree: {ours_q1} vs {q1}"
-            );
+            for ours in [tunable.q1, evaluated.q1] {
+                assert!(
+                    (q1 - ours).abs() < 1e-3 * (1.0 + q1.abs()),
+                    "the two solutions disagree: {ours} vs {q1}"
+                );
+            }
             format!(
-                ", \"baseline_solve_s\": {b:.6}, \"baseline_steps\": {steps}, \"solve_ratio\": {:.3}, \"baseline_q1_at_1s\": {q1:.6}",
-                solve_s / b
+                ", \"baseline_solve_s\": {b:.6}, \"baseline_steps\": {steps}, \"solve_ratio\": {:.3}, \"evaluated_solve_ratio\": {:.3}, \"baseline_q1_at_1s\": {q1:.6}",
+                tunable.solve_s / b,
+                evaluated.solve_s / b
             )
         } else {
             String::new()
         };
+        let t = tunable.times;
         println!(
-            "{{\"n\": {n}, \"flatten_s\": {:.6}, \"simplify_s\": {:.6}, \"codegen_s\": {:.6}, \"init_s\": {init_s:.6}, \"solve_s\": {solve_s:.6}, \"compile_s\": {compile_s:.6}, \"steps\": {}, \"unknowns\": {}, \"states\": {}, \"q1_at_1s\": {ours_q1:.6}{baseline_part}}}",
-            times.flatten_s,
-            times.simplify_s,
-            times.codegen_s,
-            sol.statistics().steps,
-            ssys.unknowns().len(),
-            ssys.states().len(),
+            "{{\"n\": {n}, \"flatten_s\": {:.6}, \"simplify_s\": {:.6}, \"codegen_s\": {:.6}, \"init_s\": {:.6}, \"solve_s\": {:.6}, \"compile_s\": {:.6}, \"steps\": {}, \"unknowns\": {}, \"states\": {}, \"q1_at_1s\": {:.6}, \"evaluated_compile_s\": {:.6}, \"evaluated_solve_s\": {:.6}, \"evaluated_steps\": {}{baseline_part}}}",
+            t.flatten_s,
+            t.simplify_s,
+            t.codegen_s,
+            tunable.init_s,
+            tunable.solve_s,
+            tunable.compile_s,
+            tunable.steps,
+            tunable.unknowns,
+            tunable.states,
+            tunable.q1,
+            evaluated.compile_s,
+            evaluated.solve_s,
+            evaluated.steps,
         );
     }
     if let [.., (n0, c0), (n1, c1)] = compile_rows.as_slice() {
@@ -294,6 +286,71 @@ fn main() -> Result<(), multibody::Error> {
         );
     }
     Ok(())
+}
+
+/// One compiled and solved variant of the chain.
+struct Run {
+    times: multibody::simplify::PhaseTimes,
+    compile_s: f64,
+    init_s: f64,
+    solve_s: f64,
+    steps: u64,
+    unknowns: usize,
+    states: usize,
+    /// `rev1.phi` at `T_CHECK`.
+    q1: f64,
+}
+
+/// Compiles `model` (the fastest of 3 repetitions for each phase and for the
+/// initialization) and solves it; `None` when `BENCH_EVAL_ONLY` stops after the
+/// diagnostics.
+fn run(
+    model: &System,
+    options: &SimplifyOptions,
+    opts: &SolverOptions,
+) -> Result<Option<Run>, multibody::Error> {
+    let mut best: Option<(SimplifiedSystem, multibody::simplify::PhaseTimes, f64)> = None;
+    for _ in 0..3 {
+        let ssys = structural_simplify_with(model, options)?;
+        let t = ssys.statistics().times;
+        let t0 = Instant::now();
+        drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
+        let init = t0.elapsed().as_secs_f64();
+        best = Some(match best {
+            None => (ssys, t, init),
+            Some((s, b, i)) => (
+                s,
+                multibody::simplify::PhaseTimes {
+                    flatten_s: b.flatten_s.min(t.flatten_s),
+                    simplify_s: b.simplify_s.min(t.simplify_s),
+                    codegen_s: b.codegen_s.min(t.codegen_s),
+                },
+                i.min(init),
+            ),
+        });
+    }
+    let (ssys, times, init_s) = best.expect("three repetitions");
+    if std::env::var("BENCH_STATS").is_ok() {
+        diagnostics(&ssys);
+        if std::env::var("BENCH_EVAL_ONLY").is_ok() {
+            return Ok(None);
+        }
+    }
+    let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
+    let t1 = Instant::now();
+    let sol = prob.solve(opts)?;
+    let solve_s = t1.elapsed().as_secs_f64();
+    log_stats(sol.statistics());
+    Ok(Some(Run {
+        times,
+        compile_s: times.flatten_s + times.simplify_s + times.codegen_s,
+        init_s,
+        solve_s,
+        steps: sol.statistics().steps,
+        unknowns: ssys.unknowns().len(),
+        states: ssys.states().len(),
+        q1: sol.at("rev1.phi", T_CHECK)?,
+    }))
 }
 
 /// Integrator counters on stderr (set `BENCH_STATS=1`).
@@ -335,7 +392,7 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
     }
     let per = t.elapsed().as_secs_f64() / reps as f64;
     eprintln!(
-        "  sparse solves (size, matrix entries, LU entries): {:?}",
+        "  sparse solves (size, matrix entries, LU entries, refactor multiply-adds): {:?}",
         ws.sparse_factor_sizes()
     );
     eprintln!(

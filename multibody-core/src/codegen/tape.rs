@@ -264,14 +264,22 @@ pub(crate) struct SparseSolves {
 
 impl Workspace {
     /// For each sparse linear solve of the last evaluated tape: its size, the entries
-    /// of its matrix and the entries of its LU factors (diagonal included; 0 before
-    /// the first evaluation). For logs and benchmarks.
-    pub fn sparse_factor_sizes(&self) -> Vec<(usize, usize, usize)> {
+    /// of its matrix, the entries of its LU factors (diagonal included) and the
+    /// multiply-adds of one refactorization (0 before the first evaluation). For logs
+    /// and benchmarks.
+    pub fn sparse_factor_sizes(&self) -> Vec<(usize, usize, usize, usize)> {
         self.sparse
             .lu
             .iter()
             .filter(|lu| lu.size() > 0)
-            .map(|lu| (lu.size(), lu.pattern_nnz(), lu.factor_nnz()))
+            .map(|lu| {
+                (
+                    lu.size(),
+                    lu.pattern_nnz(),
+                    lu.factor_nnz(),
+                    lu.refactor_flops(),
+                )
+            })
             .collect()
     }
 

@@ -282,3 +282,23 @@ fn pre_elimination_leaves_nothing_for_the_lu() {
     assert_eq!(ssys.unknowns(), vec!["x"]);
     solve_and_check(&ssys);
 }
+
+/// Tearing leaves one variable (`vm`) and two assignments: two sensitivities. With a
+/// budget below that the block goes to the sparse path (where pre-elimination then
+/// solves it by assignments); with the default it is torn and solved densely.
+#[test]
+fn sensitivity_budget_decides_between_dense_and_sparse() {
+    let dense = simplify("lin_budget_dense", LinearBlockLimits::default());
+    assert_eq!(dense.statistics().linear_inline, vec![(3, 1)]);
+    let sparse = simplify(
+        "lin_budget_sparse",
+        LinearBlockLimits {
+            max_inline_sensitivities: 1,
+            ..LinearBlockLimits::default()
+        },
+    );
+    let st = sparse.statistics();
+    assert!(st.linear_inline.is_empty(), "{st}");
+    assert_eq!(st.linear_sparse, vec![(3, 0)], "{st}");
+    solve_and_check(&sparse);
+}
