@@ -370,3 +370,41 @@ fn a_loop_that_cannot_close_names_its_joints_and_asks_for_guesses() {
     assert!(err.contains("`j3`, `j5`"), "{err}");
     assert!(err.contains("new_with_guesses"), "{err}");
 }
+
+/// The initialization system is torn like the DAE: it iterates on joint coordinates,
+/// never on entries of orientation matrices (which the joints compute from them). The
+/// planar four-bar closes its loop through j3 and j5 (j1 is given); the spatial one
+/// through the joint coordinates of its loop.
+#[test]
+fn initialization_iterates_on_joint_coordinates_only() {
+    for (model, overrides, expected) in [
+        (
+            fourbar_example::fourbar(),
+            vec![("j1.phi", 0.1)],
+            vec!["j3.phi", "j5.phi"],
+        ),
+        (
+            fourbar_cutjoint_example::fourbar_cutjoint(),
+            vec![],
+            vec!["rev1.phi", "rev.phi", "j3.phi", "j4.phi", "j5.phi"],
+        ),
+    ] {
+        let ssys = structural_simplify(&model).unwrap();
+        let prob = DaeProblem::new(&ssys, &overrides, (0.0, 1.0)).unwrap();
+        let report = prob.init_report();
+        assert!(
+            !report.iteration_variables.is_empty(),
+            "{}: a loop needs iteration",
+            ssys.name()
+        );
+        assert_eq!(report.iteration_variables, expected, "{}", ssys.name());
+        for v in &report.iteration_variables {
+            assert!(
+                !v.contains(".R.") && !v.contains(".T["),
+                "{}: iterates on {v}: {:?}",
+                ssys.name(),
+                report.iteration_variables
+            );
+        }
+    }
+}

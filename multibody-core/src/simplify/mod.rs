@@ -346,6 +346,7 @@ pub fn structural_simplify_with(
     } = flat;
     Ok(SimplifiedSystem {
         name,
+        never_tear: never_tear.clone(),
         variables,
         parameters,
         evaluated_parameters,

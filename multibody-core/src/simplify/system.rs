@@ -170,6 +170,9 @@ impl fmt::Display for Statistics {
 #[derive(Clone, Debug)]
 pub struct SimplifiedSystem {
     pub(crate) name: String,
+    /// Leaves that tearing never iterates on (orientation matrix entries), for the
+    /// initialization system's tearing too.
+    pub(crate) never_tear: crate::hash::HashSet<Id>,
     pub(crate) arena: Arena,
     pub(crate) variables: Vec<Variable>,
     pub(crate) parameters: Vec<Parameter>,

@@ -12,7 +12,7 @@
 
 use std::collections::VecDeque;
 
-use crate::hash::{HashMap, HashSet};
+use crate::hash::HashMap;
 use crate::model::EquationText;
 
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
@@ -51,6 +51,8 @@ pub(crate) struct InitResult {
     pub assumed: Vec<(String, f64)>,
     /// Newton iterations.
     pub iterations: usize,
+    /// Names of the iteration variables.
+    pub iteration_variables: Vec<String>,
 }
 
 /// Finds consistent initial values.
@@ -227,7 +229,9 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let residuals: Vec<Id> = eqs.iter().map(|e| e.0).collect();
     let mut known: Vec<f64> = input.params.clone();
     known.extend(input.starts.iter().map(|s| s.unwrap_or(0.0)));
-    let never_tear = HashSet::default();
+    // Orientation entries are computed from the joint coordinates, never iterated on
+    // (as in the DAE's own tearing).
+    let never_tear = &sys.never_tear;
     // Slots (the variables themselves, not their derivatives) rank as tearing and
     // iteration variables by their state priority.
     let tear_priority: HashMap<Id, f64> = sys
@@ -239,7 +243,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let mut temps = Temporaries {
         next: sys.next_temporary,
         params: &known,
-        never_tear: &never_tear,
+        never_tear,
         tear_priority: &tear_priority,
     };
     let schedule = causalize(
@@ -296,6 +300,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     for (k, &l) in schedule.iteration.iter().enumerate() {
         inputs[layout.u(k)] = guess(sys, &input, &arena, l);
     }
+    let iteration_variables: Vec<String> = schedule
+        .iteration
+        .iter()
+        .map(|&l| init_name(sys, &arena, l))
+        .collect();
     let outcome = newton(
         &compiled.residual,
         compiled.jacobian(),
@@ -376,6 +385,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         params,
         assumed,
         iterations: outcome.iterations,
+        iteration_variables,
     })
 }
 

@@ -24,6 +24,9 @@ pub struct InitReport {
     pub assumed: Vec<(String, f64)>,
     /// Newton iterations used.
     pub iterations: usize,
+    /// The unknowns the initialization iterated on (the tearing variables of its
+    /// nonlinear blocks), by name. Orientation matrix entries are never among them.
+    pub iteration_variables: Vec<String>,
 }
 
 /// A simplified system with values: tunable parameters, initial values and a time span.
@@ -198,6 +201,7 @@ impl<'a> DaeProblem<'a> {
             report: InitReport {
                 assumed: init.assumed,
                 iterations: init.iterations,
+                iteration_variables: init.iteration_variables,
             },
         })
     }
