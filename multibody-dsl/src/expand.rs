@@ -203,6 +203,10 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 for m in modifiers {
                     let v = &m.value;
                     connectors.extend(quote_spanned!(m.key.span()=>
+                        const _: () = ::core::assert!(
+                            <#ty as #p::Connector>::HAS_VALUE,
+                            "`start` is only for a scalar signal connector (RealInput, RealOutput)"
+                        );
                         __s.set_start(#s, #v);
                     ));
                 }
@@ -368,6 +372,7 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
     if let Some((role, ty)) = &def.signal {
         let kind = role_tokens(*role);
         let class = format!("signal:{ty}");
+        let has_value = ty != "Vec3";
         let (handle_ty, declare, at) = if ty == "Vec3" {
             (
                 quote!(#p::Signal3),
@@ -404,6 +409,7 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
                 fn handle(path: &str) -> #handle_ty {
                     #at(path)
                 }
+                const HAS_VALUE: bool = #has_value;
             }
         });
     }

@@ -123,6 +123,15 @@ impl Tape {
             v
         };
         let len = self.ops.len();
+        // Sets are freed after their last use (outputs are kept).
+        const KEEP: u32 = u32::MAX;
+        let mut last_use = vec![0u32; len];
+        for (i, op) in self.ops.iter().enumerate() {
+            op.for_each_operand(&self.ls, |r| last_use[r as usize] = i as u32);
+        }
+        for &o in self.outputs.iter().take(n) {
+            last_use[o as usize] = KEEP;
+        }
         let mut sets: Vec<Vec<u32>> = vec![Vec::new(); len];
         let mut operands: Vec<u32> = Vec::new();
         for (i, &op) in self.ops.iter().enumerate() {
@@ -148,6 +157,11 @@ impl Tape {
                         acc = cap(merge(&acc, &sets[r as usize]));
                     }
                     sets[i] = acc;
+                }
+            }
+            for &r in &operands {
+                if last_use[r as usize] == i as u32 {
+                    sets[r as usize] = Vec::new();
                 }
             }
         }

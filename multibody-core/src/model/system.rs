@@ -193,7 +193,10 @@ impl System {
             }
             s.subsystems
                 .iter_mut()
-                .filter(|c| full.starts_with(c.path.as_str()))
+                .filter(|c| {
+                    full.strip_prefix(c.path.as_str())
+                        .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+                })
                 .find_map(|c| find(c, full))
         }
         let full = self.full(local_path);

@@ -27,6 +27,9 @@ pub trait Connector: Component {
     type Handle: ConnectorHandle;
     /// The handle of the connector at full path `path`.
     fn handle(path: &str) -> Self::Handle;
+    /// Whether the connector is one value of its own (a scalar signal connector), which
+    /// can be given a start value (`connector y(start = y_start): RealOutput;`).
+    const HAS_VALUE: bool = false;
 }
 
 /// The handle of a connector instance: it knows its full path.

@@ -29,10 +29,10 @@ pub struct LinearBlockLimits {
     /// A linear block whose tearing leaves more iteration variables than this is not
     /// solved by a dense LU (its cost grows with their cube; default 24).
     pub max_inline_tearing: usize,
-    /// A torn linear block is solved densely only while its tearing variables times its
-    /// assigned unknowns (the sensitivities the dense form computes) stay at most this
-    /// (default 2000: a 20-link pendulum torn to 20 variables of 229 is solved faster
-    /// by the sparse LU).
+    /// With `sparse_inline`, a torn linear block is solved densely only while its
+    /// tearing variables times its assigned unknowns (the sensitivities the dense form
+    /// computes) stay at most this (default 2000: a 20-link pendulum torn to 20
+    /// variables of 229 is solved faster by the sparse LU).
     pub max_inline_sensitivities: usize,
     /// Linear blocks beyond the limits above are solved inside the compiled
     /// functions by a sparse LU of the whole block (`true`, the default), or left to the
@@ -322,10 +322,12 @@ fn solve_block(
     let torn: Vec<Id> = t.torn_vars.iter().map(|&j| vars[j]).collect();
     let assignments: Vec<(usize, Id)> = t.assignments.iter().map(|&(e, j)| (e, vars[j])).collect();
     if linear {
-        let too_big = k > limits.max_inline_size
-            || torn.len() > limits.max_inline_tearing
-            || torn.len() * (k - torn.len()) > limits.max_inline_sensitivities;
-        if too_big && limits.sparse_inline {
+        let too_big = k > limits.max_inline_size || torn.len() > limits.max_inline_tearing;
+        // Many sensitivities make the dense form slower than the sparse LU, not
+        // impossible: they decide between the two inline forms only.
+        let too_many_sensitivities =
+            torn.len() * (k - torn.len()) > limits.max_inline_sensitivities;
+        if limits.sparse_inline && (too_big || too_many_sensitivities) {
             let left = sparse_linear(arena, block_eqs, eq_ids, vars, limits, temps, out);
             out.blocks.push(BlockInfo {
                 kind: BlockKind::LinearSparse,

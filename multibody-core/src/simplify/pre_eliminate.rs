@@ -13,7 +13,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use crate::expr::{Arena, Id};
+use crate::expr::{Arena, Id, Node};
 
 use super::causalize::safe_coefficient;
 
@@ -52,6 +52,32 @@ pub(crate) struct Reduced {
     pub vars: Vec<usize>,
 }
 
+/// Whether `a` may serve as a pivot: a constant that is not small next to the other
+/// constant entries of its column (threshold pivoting at compile time), or an
+/// expression of parameters that is nonzero for their defaults and a single term (an
+/// original coefficient such as a mass, not a difference that elimination made and that
+/// could vanish for other parameter values).
+fn acceptable_pivot(arena: &Arena, a: Id, column_max: f64, params: &[f64]) -> bool {
+    if let Some(v) = arena.as_const(a) {
+        return v.is_finite() && v.abs() >= PIVOT_THRESHOLD * column_max && v != 0.0;
+    }
+    let single_term = match arena.node(a) {
+        Node::Sum(ts, c) => ts.len() == 1 && f64::from_bits(*c) == 0.0,
+        _ => true,
+    };
+    single_term && safe_coefficient(arena, a, params)
+}
+
+/// A constant pivot must be at least this fraction of the largest constant entry of its
+/// column.
+const PIVOT_THRESHOLD: f64 = 0.1;
+
+/// An updated constant entry this small next to the terms it came from is a
+/// cancellation: it is removed, not kept as a tiny entry.
+fn cancels(v: f64, a: f64, b: f64) -> bool {
+    v.abs() <= 64.0 * f64::EPSILON * a.abs().max(b.abs())
+}
+
 /// Eliminates what it can from `rows` (over `n_vars` unknowns). `params` are the default
 /// parameter values that decide whether a coefficient may vanish. `compact` may replace
 /// the coefficients and the constant part of a pivot row by leaves computed beforehand
@@ -83,6 +109,19 @@ pub(crate) fn pre_eliminate(
             .find(|&&(k, _)| k == var)
             .map(|&(_, a)| a)
     };
+    // Largest constant entry of a column among the live rows.
+    let column_max = |rows: &[LinearRow],
+                      col_rows: &[Vec<usize>],
+                      row_alive: &[bool],
+                      arena: &Arena,
+                      j: usize| {
+        col_rows[j]
+            .iter()
+            .filter(|&&r| row_alive[r])
+            .filter_map(|&r| rows[r].entries.iter().find(|e| e.0 == j))
+            .filter_map(|e| arena.as_const(e.1))
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+    };
     let mut eliminations = Vec::new();
     loop {
         // Candidates by Markowitz cost (fill an elimination can create).
@@ -93,7 +132,14 @@ pub(crate) fn pre_eliminate(
             }
             for &(j, a) in &r.entries {
                 let cost = (r.entries.len() - 1) * (col_count[j] - 1);
-                if cost <= max_fill && safe_coefficient(arena, a, params) {
+                if cost <= max_fill
+                    && acceptable_pivot(
+                        arena,
+                        a,
+                        column_max(&rows, &col_rows, &row_alive, arena, j),
+                        params,
+                    )
+                {
                     heap.push(Reverse((cost, i, j)));
                 }
             }
@@ -107,7 +153,14 @@ pub(crate) fn pre_eliminate(
                 continue;
             };
             let now = (rows[i].entries.len() - 1) * (col_count[j] - 1);
-            if now > max_fill || !safe_coefficient(arena, p, params) {
+            if now > max_fill
+                || !acceptable_pivot(
+                    arena,
+                    p,
+                    column_max(&rows, &col_rows, &row_alive, arena, j),
+                    params,
+                )
+            {
                 continue;
             }
             if now > cost {
@@ -140,13 +193,24 @@ pub(crate) fn pre_eliminate(
                 };
                 let (_, a_rj) = rows[r].entries.remove(pos);
                 col_count[j] -= 1;
+                let a_rj = compact(arena, a_rj);
                 let f = arena.mul(a_rj, inv);
                 for &(k, a_ik) in &others {
                     let delta = arena.mul(f, a_ik);
                     match rows[r].entries.iter().position(|&(kk, _)| kk == k) {
                         Some(q) => {
-                            let v = arena.sub(rows[r].entries[q].1, delta);
-                            if arena.as_const(v) == Some(0.0) {
+                            let old = rows[r].entries[q].1;
+                            let v = arena.sub(old, delta);
+                            let cancelled = match (
+                                arena.as_const(v),
+                                arena.as_const(old),
+                                arena.as_const(delta),
+                            ) {
+                                (Some(v), Some(a), Some(b)) => cancels(v, a, b),
+                                (Some(v), _, _) => v == 0.0,
+                                _ => false,
+                            };
+                            if cancelled {
                                 rows[r].entries.remove(q);
                                 col_count[k] -= 1;
                             } else {

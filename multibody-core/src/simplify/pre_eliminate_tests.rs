@@ -138,3 +138,48 @@ fn unsafe_coefficients_are_not_pivots() {
     assert!(r.eliminations.is_empty());
     assert_eq!(r.vars, vec![0, 1]);
 }
+
+/// A constant that cancels to rounding noise (0.3 - 3 * 0.1) is removed rather than
+/// kept as a tiny pivot candidate, and a pivot made by elimination from parameters
+/// (`p - 1`) is refused even though it is nonzero for the default `p = 3`.
+#[test]
+fn cancellations_and_made_parameter_differences_are_no_pivots() {
+    let mut arena = Arena::new();
+    // Row 0: x0 + x1 = 1; row 1: 3 x0 + 0.3 x1 + x2 = 2; row 2: x2 = 5.
+    // Eliminating x0 from row 0 leaves 0.3 - 3 * 0.1... here 0.3 - 3 = -2.7 for x1,
+    // so use coefficients that cancel: row 1 is 0.1 x0 + 0.1 x1 + x2 = 2 after scaling.
+    let spec: [(&[(usize, f64)], f64); 3] = [
+        (&[(0, 1.0), (1, 1.0)], -1.0),
+        (&[(0, 0.1), (1, 0.3 - 0.2), (2, 1.0)], -2.0),
+        (&[(2, 1.0)], -5.0),
+    ];
+    let rs = rows(&mut arena, &spec);
+    let r = pre_eliminate(&mut arena, rs, 3, &[], 8, &mut |_, e| e);
+    // 0.3 - 0.2 - 0.1 is 2.8e-17, not zero: it must not survive as an entry of x1.
+    for (_, row) in &r.rows {
+        for &(j, a) in &row.entries {
+            let v = arena.as_const(a).unwrap();
+            assert!(v.abs() > 1e-12, "entry of x{j} kept at {v:e}");
+        }
+    }
+    // Parameter pivots: p x0 + x1 = 0, x0 + x1 = 1 (p = 3 by default). x1 goes from
+    // the second row, leaving (p - 1) x0, a difference elimination made.
+    let mut arena = Arena::new();
+    let p = arena.param(0);
+    let one = arena.one();
+    let zero = arena.zero();
+    let minus_one = arena.constant(-1.0);
+    let rows2 = vec![
+        LinearRow {
+            entries: vec![(0, p), (1, one)],
+            c: zero,
+        },
+        LinearRow {
+            entries: vec![(0, one), (1, one)],
+            c: minus_one,
+        },
+    ];
+    let r = pre_eliminate(&mut arena, rows2, 2, &[3.0], 8, &mut |_, e| e);
+    assert_eq!(r.eliminations.len(), 1, "{:?}", r.eliminations);
+    assert_eq!(r.vars.len(), 1);
+}

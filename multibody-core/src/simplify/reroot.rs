@@ -122,7 +122,15 @@ pub(crate) fn reroot_iteration_variables(
         for (k, s) in steps.iter().enumerate().take(insert_at) {
             let reads = match s {
                 Step::Assign { expr, .. } => arena.leaves(*expr),
-                _ => Vec::new(),
+                Step::LinearSolve { a, c, .. } => {
+                    a.iter().chain(c).flat_map(|&e| arena.leaves(e)).collect()
+                }
+                Step::SparseLinearSolve { entries, c, .. } => entries
+                    .iter()
+                    .map(|e| e.2)
+                    .chain(c.iter().copied())
+                    .flat_map(|e| arena.leaves(e))
+                    .collect(),
             };
             if !in_chain.contains(&k)
                 && reads
