@@ -115,64 +115,55 @@ struct Search<'a> {
     /// a search costs what it visits, not the size of the graph).
     eq_mark: &'a mut Vec<bool>,
     var_mark: &'a mut Vec<bool>,
+    /// For each equation reached by the search: the equation it was reached from and
+    /// the slot between them (valid for the marked equations only).
+    via: &'a mut Vec<(usize, usize)>,
 }
 
 impl Search<'_> {
-    /// Iterative augmenting-path search from equation `root` over highest-derivative
-    /// slots; on failure, the visited equations and slots are left colored.
+    /// Breadth-first augmenting-path search from equation `root` over
+    /// highest-derivative slots: the shortest path is taken (depth first, the searches
+    /// of a chain of N bodies walked along the chain and grew with N). On failure the
+    /// visited equations and slots, everything reachable, are left colored.
     fn augment(&mut self, root: usize) -> bool {
-        // Frames: (equation, next position, searching for a free slot first?).
-        let mut stack: Vec<(usize, usize, bool)> = vec![(root, 0, true)];
-        // `via[k]` is the slot through which frame k + 1 was entered.
-        let mut via: Vec<usize> = Vec::new();
         self.mark_eq(root);
-        while let Some(&(e, pos, first)) = stack.last() {
+        let mut head = 0;
+        while head < self.colored_eqs.len() {
+            let e = self.colored_eqs[head];
+            head += 1;
             let vars = &self.adj[e];
-            if first {
-                let free = vars
-                    .iter()
-                    .copied()
-                    .find(|&v| self.var_diff[v].is_none() && self.var_eq[v].is_none());
-                if let Some(v) = free {
-                    // Flip the alternating path root -> ... -> e -> v.
+            let free = vars
+                .iter()
+                .copied()
+                .find(|&v| self.var_diff[v].is_none() && self.var_eq[v].is_none());
+            if let Some(v) = free {
+                // Flip the alternating path root -> ... -> e -> v.
+                let (mut e, mut v) = (e, v);
+                loop {
+                    let previous = self.eq_var[e];
                     self.var_eq[v] = Some(e);
                     self.eq_var[e] = Some(v);
-                    for (k, &pv) in via.iter().enumerate() {
-                        let pe = stack[k].0;
-                        self.var_eq[pv] = Some(pe);
-                        self.eq_var[pe] = Some(pv);
-                    }
-                    return true;
-                }
-                stack.last_mut().expect("non-empty").2 = false;
-                continue;
-            }
-            let mut p = pos;
-            let mut next = None;
-            while p < vars.len() {
-                let v = vars[p];
-                p += 1;
-                if self.var_diff[v].is_none() && !self.var_mark[v] {
-                    self.var_mark[v] = true;
-                    self.colored_vars.push(v);
-                    if let Some(e2) = self.var_eq[v]
-                        && !self.eq_mark[e2]
-                    {
-                        next = Some((v, e2));
+                    if e == root {
                         break;
                     }
+                    let (parent, through) = self.via[e];
+                    debug_assert_eq!(previous, Some(through));
+                    (e, v) = (parent, through);
                 }
+                return true;
             }
-            stack.last_mut().expect("non-empty").1 = p;
-            match next {
-                Some((v, e2)) => {
-                    self.mark_eq(e2);
-                    via.push(v);
-                    stack.push((e2, 0, true));
+            for i in 0..self.adj[e].len() {
+                let v = self.adj[e][i];
+                if self.var_diff[v].is_some() || self.var_mark[v] {
+                    continue;
                 }
-                None => {
-                    stack.pop();
-                    via.pop();
+                self.var_mark[v] = true;
+                self.colored_vars.push(v);
+                if let Some(e2) = self.var_eq[v]
+                    && !self.eq_mark[e2]
+                {
+                    self.via[e2] = (e, v);
+                    self.mark_eq(e2);
                 }
             }
         }
@@ -263,6 +254,7 @@ pub fn pantelides_with_implicit(
     let mut rounds = 0usize;
     let mut eq_mark: Vec<bool> = Vec::new();
     let mut var_mark: Vec<bool> = Vec::new();
+    let mut via: Vec<(usize, usize)> = Vec::new();
 
     for k in 0..n_original {
         if is_definition(k) {
@@ -272,6 +264,7 @@ pub fn pantelides_with_implicit(
         loop {
             eq_mark.resize(adj.len(), false);
             var_mark.resize(var_diff.len(), false);
+            via.resize(adj.len(), (0, 0));
             let mut s = Search {
                 adj: &adj,
                 var_diff: &var_diff,
@@ -281,6 +274,7 @@ pub fn pantelides_with_implicit(
                 colored_vars: Vec::new(),
                 eq_mark: &mut eq_mark,
                 var_mark: &mut var_mark,
+                via: &mut via,
             };
             let augmented = s.augment(i);
             let (colored_eqs, colored_vars) = (s.colored_eqs, s.colored_vars);
