@@ -27,7 +27,7 @@ const ATOL: f64 = 1e-8;
 
 /// fixed - sd1 - inertia1 - sd2 - inertia2 - ... - inertiaN; the last inertia starts
 /// displaced by 1 rad, the others at rest in place.
-fn chain(n: usize) -> System {
+pub fn chain(n: usize) -> System {
     let mut m = System::new(format!("chain{n}"));
     let fixed = m.add_typed("fixed", &Fixed::default());
     let mut prev = fixed.flange;
@@ -59,8 +59,9 @@ fn chain(n: usize) -> System {
 /// The same chain by hand in absolute coordinates: u = [phi_1..phi_N, w_1..w_N],
 /// `0 = phi' - w`, `0 = J w' - (tau_{k+1} - tau_k)` with
 /// `tau_k = c (phi_k - phi_{k-1}) + d (w_k - w_{k-1})` (phi_0 = w_0 = 0, tau_{N+1} = 0).
-struct Baseline {
-    n: usize,
+pub struct Baseline {
+    /// Number of inertias.
+    pub n: usize,
 }
 
 impl Baseline {

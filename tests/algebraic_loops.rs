@@ -3,36 +3,11 @@
 
 #![allow(missing_docs)]
 
-use multibody::electrical::{Capacitor, ConstantVoltage, Ground, OnePort, Pin, Resistor};
-use multibody::prelude::*;
+#[path = "support/models_1d.rs"]
+mod models_1d;
 
-/// A Wheatstone bridge driven by 10 V with a capacitor across its outputs.
-fn bridge() -> System {
-    system! {
-        name: "bridge";
-        source = ConstantVoltage { V: 10.0 };
-        r1 = Resistor { R: 100.0 };
-        r2 = Resistor { R: 200.0 };
-        r3 = Resistor { R: 300.0 };
-        r4 = Resistor { R: 400.0 };
-        r5 = Resistor { R: 500.0 };
-        c = Capacitor { C: 1e-3 };
-        ground = Ground::default();
-        // top node: source.p; left branch r1 (top-a), r3 (a-bottom); right r2 (top-b),
-        // r4 (b-bottom); r5 and the capacitor bridge a and b.
-        connect(source.p, r1.p);
-        connect(source.p, r2.p);
-        connect(r1.n, r3.p);
-        connect(r2.n, r4.p);
-        connect(r3.n, source.n);
-        connect(r4.n, source.n);
-        connect(r1.n, r5.p);
-        connect(r5.n, r2.n);
-        connect(r1.n, c.p);
-        connect(c.n, r2.n);
-        connect(source.n, ground.p);
-    }
-}
+use multibody::electrical::Pin;
+use multibody::prelude::*;
 
 /// Node voltages (a, b) of the bridge for a capacitor voltage `vc = va - vb`: nodal
 /// analysis with the capacitor current `ic` as unknown, solved by hand.
@@ -50,7 +25,7 @@ fn bridge_nodes(vc: f64) -> (f64, f64, f64) {
 
 #[test]
 fn resistor_bridge_is_a_linear_block_solved_inside() {
-    let ssys = structural_simplify(&bridge()).unwrap();
+    let ssys = structural_simplify(&models_1d::bridge()).unwrap();
     // One state (the capacitor voltage); the network's currents form one linear block
     // that tearing reduces and the compiled residual solves: no algebraic unknowns.
     assert_eq!(ssys.states(), ["c.v"]);
@@ -84,36 +59,9 @@ fn resistor_bridge_is_a_linear_block_solved_inside() {
     assert!(ic_end.abs() < 1e-6, "capacitor current at the end {ic_end}");
 }
 
-component! {
-    /// A resistor with a cubic characteristic `v = R0 i + a i^3`.
-    pub struct CubicResistor {
-        /// Linear resistance [Ohm].
-        parameter R0: f64 = 1.0;
-        /// Cubic coefficient [V/A3].
-        parameter a: f64 = 1.0;
-        extends OnePort { p, n, v, i };
-        equation {
-            v = R0 * i + a * i * i * i;
-        }
-    }
-}
-
 #[test]
 fn nonlinear_loop_keeps_one_iteration_variable() {
-    let model = system! {
-        name: "cubic_loop";
-        source = ConstantVoltage { V: 5.0 };
-        nonlinear = CubicResistor { R0: 1.0, a: 2.0 };
-        load = Resistor { R: 2.0 };
-        c = Capacitor { C: 0.1 };
-        ground = Ground::default();
-        connect(source.p, nonlinear.p);
-        connect(nonlinear.n, load.p);
-        connect(load.n, source.n);
-        connect(nonlinear.n, c.p);
-        connect(c.n, source.n);
-        connect(source.n, ground.p);
-    };
+    let model = models_1d::cubic_loop();
     let ssys = structural_simplify(&model).unwrap();
     // The current through the cubic resistor cannot be solved explicitly: it is the
     // tearing variable of a nonlinear block and an algebraic unknown of the DAE.

@@ -1,10 +1,10 @@
 //! 1-D models against analytic solutions, with their exact structure after
 //! simplification.
 
-use multibody::electrical::{Capacitor, ConstantVoltage, Ground, Resistor};
+#[path = "support/models_1d.rs"]
+mod models_1d;
+
 use multibody::prelude::*;
-use multibody::rotational::{Fixed, Inertia, Spring, SpringDamper};
-use multibody::translational;
 
 fn tight() -> SolverOptions {
     SolverOptions {
@@ -26,17 +26,7 @@ fn damped(m: f64, d: f64, c: f64, x0: f64, v0: f64, t: f64) -> f64 {
 #[test]
 fn damped_mass_spring_matches_the_analytic_solution() {
     let (m, c, d) = (2.0, 50.0, 1.5);
-    let model = system! {
-        name: "mass_spring";
-        fixed = translational::Fixed::default();
-        spring = translational::Spring { c };
-        damper = translational::Damper { d };
-        mass = translational::Mass { m, s_start: 0.1 };
-        connect(fixed.flange, spring.flange_a);
-        connect(spring.flange_b, mass.flange_a);
-        connect(fixed.flange, damper.flange_a);
-        connect(damper.flange_b, mass.flange_a);
-    };
+    let model = models_1d::mass_spring_damper(m, c, d);
     let ssys = structural_simplify(&model).unwrap();
     assert_eq!(ssys.states(), ["damper.s_rel", "damper.v_rel"]);
     assert_eq!(ssys.mass_matrix_diagonal(), &[1.0, 1.0]);
@@ -54,17 +44,7 @@ fn damped_mass_spring_matches_the_analytic_solution() {
 
 #[test]
 fn rc_circuit_charges_with_time_constant_rc() {
-    let model = system! {
-        name: "rc";
-        source = ConstantVoltage { V: 10.0 };
-        resistor = Resistor { R: 1000.0 };
-        capacitor = Capacitor { C: 1e-3 };
-        ground = Ground::default();
-        connect(source.p, resistor.p);
-        connect(resistor.n, capacitor.p);
-        connect(capacitor.n, source.n);
-        connect(source.n, ground.p);
-    };
+    let model = models_1d::rc_circuit();
     let ssys = structural_simplify(&model).unwrap();
     assert_eq!(ssys.states(), ["capacitor.v"]);
     assert_eq!(ssys.unknowns().len(), 1);
@@ -87,14 +67,7 @@ fn rc_circuit_charges_with_time_constant_rc() {
 #[test]
 fn two_inertias_with_a_spring_damper_conserve_momentum() {
     let (j1, j2, c, d) = (1.0, 3.0, 20.0, 0.5);
-    let model = system! {
-        name: "chain";
-        inertia1 = Inertia { J: j1 };
-        coupling = SpringDamper { c, d };
-        inertia2 = Inertia { J: j2 };
-        connect(inertia1.flange_b, coupling.flange_a);
-        connect(coupling.flange_b, inertia2.flange_a);
-    };
+    let model = models_1d::two_inertias(j1, j2, c, d);
     let ssys = structural_simplify(&model).unwrap();
     // Free chain: the absolute angle of one inertia and the relative states.
     assert_eq!(ssys.states().len(), 4);
@@ -134,14 +107,7 @@ fn two_inertias_with_a_spring_damper_conserve_momentum() {
 #[test]
 fn undamped_oscillator_keeps_its_energy_for_100_periods() {
     let c = 4.0 * std::f64::consts::PI * std::f64::consts::PI; // period 1 s with J = 1
-    let model = system! {
-        name: "undamped";
-        fixed = Fixed::default();
-        spring = Spring { c };
-        inertia = Inertia { J: 1.0, phi_start: 1.0 };
-        connect(fixed.flange, spring.flange_a);
-        connect(spring.flange_b, inertia.flange_a);
-    };
+    let model = models_1d::undamped_oscillator(c);
     let ssys = structural_simplify(&model).unwrap();
     assert_eq!(ssys.states(), ["inertia.phi", "inertia.w"]);
     // The energy error is the integrator's: it shrinks with the tolerance (BDF damps a

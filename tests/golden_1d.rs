@@ -19,10 +19,11 @@
 #[allow(dead_code)]
 mod example;
 
-use multibody::electrical::{Capacitor, ConstantVoltage, Ground, OnePort, Resistor};
+#[path = "support/models_1d.rs"]
+mod models_1d;
+
+use multibody::Statistics;
 use multibody::prelude::*;
-use multibody::rotational::{Fixed, Inertia, Spring, SpringDamper};
-use multibody::{Statistics, translational};
 
 /// Expected structure of a simplified model.
 struct Golden<'a> {
@@ -138,17 +139,7 @@ fn mass_spring_damper() {
     // damper's relative position to the mass's: both equations differentiated twice
     // (accelerations) = 4 more, 13 sorted, 4 dummy derivatives. States: the damper's
     // preferred s_rel, v_rel; everything else explicit (13 assignments).
-    let model = system! {
-        name: "mass_spring";
-        fixed = translational::Fixed::default();
-        spring = translational::Spring { c: 50.0 };
-        damper = translational::Damper { d: 1.5 };
-        mass = translational::Mass { m: 2.0, s_start: 0.1 };
-        connect(fixed.flange, spring.flange_a);
-        connect(spring.flange_b, mass.flange_a);
-        connect(fixed.flange, damper.flange_a);
-        connect(damper.flange_b, mass.flange_a);
-    };
+    let model = models_1d::mass_spring_damper(2.0, 50.0, 1.5);
     assert_golden(
         &model,
         &Golden {
@@ -176,17 +167,7 @@ fn rc_circuit() {
     // sums) = 8; potentials 1 + 1 + 3 (the ground set is the constant 0); source.v = V:
     // 14. `i = C der(v)` is no derivative alias. Left: 6 equations in 6 unknowns with
     // capacitor.v the state, no index reduction, all explicit.
-    let model = system! {
-        name: "rc";
-        source = ConstantVoltage { V: 10.0 };
-        resistor = Resistor { R: 1000.0 };
-        capacitor = Capacitor { C: 1e-3 };
-        ground = Ground::default();
-        connect(source.p, resistor.p);
-        connect(resistor.n, capacitor.p);
-        connect(capacitor.n, source.n);
-        connect(source.n, ground.p);
-    };
+    let model = models_1d::rc_circuit();
     assert_golden(
         &model,
         &Golden {
@@ -216,14 +197,7 @@ fn two_inertias_with_a_spring_damper() {
     // phi_rel = phi2 - phi1 relates three angles that all have derivatives: it is
     // differentiated twice (2 more, 6 sorted) and one angle and one speed become
     // dummies. States: the preferred relative pair and inertia1's angle and speed.
-    let model = system! {
-        name: "chain";
-        inertia1 = Inertia { J: 1.0 };
-        coupling = SpringDamper { c: 20.0, d: 0.5 };
-        inertia2 = Inertia { J: 3.0 };
-        connect(inertia1.flange_b, coupling.flange_a);
-        connect(coupling.flange_b, inertia2.flange_a);
-    };
+    let model = models_1d::two_inertias(1.0, 3.0, 20.0, 0.5);
     assert_golden(
         &model,
         &Golden {
@@ -256,14 +230,7 @@ fn undamped_oscillator() {
     // angle set with spring.flange_b.phi (3); inertia.flange_b.tau (1) = 10. Derivative
     // aliases w, a = 2. Left: 3 equations (phi_rel, the spring law, Newton), no index
     // reduction; states phi, w.
-    let model = system! {
-        name: "undamped";
-        fixed = Fixed::default();
-        spring = Spring { c: 4.0 };
-        inertia = Inertia { J: 1.0, phi_start: 1.0 };
-        connect(fixed.flange, spring.flange_a);
-        connect(spring.flange_b, inertia.flange_a);
-    };
+    let model = models_1d::undamped_oscillator(4.0);
     assert_golden(
         &model,
         &Golden {
@@ -295,28 +262,7 @@ fn resistor_bridge() {
     // the rest in sequence, so one tearing variable. Outside: the top node (V), the
     // source current, the ground current, der(c.v) = 4 assignments, plus the 12 torn
     // ones = 16.
-    let model = system! {
-        name: "bridge";
-        source = ConstantVoltage { V: 10.0 };
-        r1 = Resistor { R: 100.0 };
-        r2 = Resistor { R: 200.0 };
-        r3 = Resistor { R: 300.0 };
-        r4 = Resistor { R: 400.0 };
-        r5 = Resistor { R: 500.0 };
-        c = Capacitor { C: 1e-3 };
-        ground = Ground::default();
-        connect(source.p, r1.p);
-        connect(source.p, r2.p);
-        connect(r1.n, r3.p);
-        connect(r2.n, r4.p);
-        connect(r3.n, source.n);
-        connect(r4.n, source.n);
-        connect(r1.n, r5.p);
-        connect(r5.n, r2.n);
-        connect(r1.n, c.p);
-        connect(c.n, r2.n);
-        connect(source.n, ground.p);
-    };
+    let model = models_1d::bridge();
     assert_golden(
         &model,
         &Golden {
@@ -335,20 +281,6 @@ fn resistor_bridge() {
     );
 }
 
-component! {
-    /// A resistor with a cubic characteristic `v = R0 i + a i^3`.
-    pub struct CubicResistor {
-        /// Linear resistance [Ohm].
-        parameter R0: f64 = 1.0;
-        /// Cubic coefficient [V/A3].
-        parameter a: f64 = 1.0;
-        extends OnePort { p, n, v, i };
-        equation {
-            v = R0 * i + a * i * i * i;
-        }
-    }
-}
-
 #[test]
 fn cubic_resistor_loop() {
     // Variables 4 * 6 + 2 = 26; equations 4 * 4 + 1 and sets {source.p, nonlinear.p}
@@ -360,20 +292,7 @@ fn cubic_resistor_loop() {
     // voltage, then its current from v = R0 i + a i^3, a nonlinear block of one equation
     // whose one unknown is the tearing variable and the only algebraic unknown; the
     // other 8 are assignments. Unknowns: [the current, c.v], diagonal [0, 1].
-    let model = system! {
-        name: "cubic_loop";
-        source = ConstantVoltage { V: 5.0 };
-        nonlinear = CubicResistor { R0: 1.0, a: 2.0 };
-        load = Resistor { R: 2.0 };
-        c = Capacitor { C: 0.1 };
-        ground = Ground::default();
-        connect(source.p, nonlinear.p);
-        connect(nonlinear.n, load.p);
-        connect(load.n, source.n);
-        connect(nonlinear.n, c.p);
-        connect(c.n, source.n);
-        connect(source.n, ground.p);
-    };
+    let model = models_1d::cubic_loop();
     let ssys = assert_golden(
         &model,
         &Golden {
