@@ -120,7 +120,7 @@ impl SparseLu {
             let first = self.clone();
             self.col_order = order;
             let better = self.factor_with_pivoting(col_ptr, row_idx, values).is_ok()
-                && self.refactor_flops_unchecked() < first.refactor_flops_unchecked();
+                && self.refactor_flops() < first.refactor_flops();
             if !better {
                 *self = first;
             }
@@ -386,16 +386,12 @@ impl SparseLu {
         }
     }
 
-    /// Multiply-adds of one refactorization (for logs).
+    /// Multiply-adds of one refactorization with the recorded patterns (0 before a
+    /// factorization).
     pub(crate) fn refactor_flops(&self) -> usize {
         if !self.factored {
             return 0;
         }
-        self.refactor_flops_unchecked()
-    }
-
-    /// Multiply-adds of one refactorization with the recorded patterns.
-    fn refactor_flops_unchecked(&self) -> usize {
         (0..self.n)
             .map(|k| {
                 (self.u_ptr[k]..self.u_ptr[k + 1])

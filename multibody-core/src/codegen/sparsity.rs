@@ -41,58 +41,12 @@ impl Tape {
     /// operand, conditions and comparisons included). Linear in the tape length times
     /// the size of the dependency sets; sets are freed after their last use.
     pub fn dependencies(&self) -> Vec<Vec<usize>> {
-        let n = self.ops.len();
-        const KEEP: u32 = u32::MAX;
-        let mut last_use = vec![0u32; n];
-        for (i, op) in self.ops.iter().enumerate() {
-            op.for_each_operand(&self.ls, |r| last_use[r as usize] = i as u32);
-        }
-        for &o in &self.outputs {
-            last_use[o as usize] = KEEP;
-        }
-        let mut sets: Vec<Vec<u32>> = vec![Vec::new(); n];
-        let mut operands: Vec<u32> = Vec::new();
-        for (i, &op) in self.ops.iter().enumerate() {
-            operands.clear();
-            op.for_each_operand(&self.ls, |r| operands.push(r));
-            match op {
-                Op::Const(_) | Op::LsPart => {}
-                Op::Input(s) => sets[i] = vec![s],
-                Op::LinearSolve(s) => {
-                    let mut all: Vec<u32> = operands
-                        .iter()
-                        .flat_map(|&r| sets[r as usize].iter().copied())
-                        .collect();
-                    all.sort_unstable();
-                    all.dedup();
-                    let k = self.ls[s as usize].k;
-                    for j in 1..k {
-                        sets[i + j] = all.clone();
-                    }
-                    sets[i] = all;
-                }
-                _ => {
-                    let mut acc: Vec<u32> = Vec::new();
-                    for &r in &operands {
-                        acc = merge(&acc, &sets[r as usize]);
-                    }
-                    sets[i] = acc;
-                }
-            }
-            for &r in &operands {
-                if last_use[r as usize] == i as u32 {
-                    sets[r as usize] = Vec::new();
-                }
-            }
-        }
-        self.outputs
-            .iter()
-            .map(|&o| sets[o as usize].iter().map(|&s| s as usize).collect())
+        self.dependency_sets(self.outputs.len(), Some, usize::MAX)
+            .into_iter()
+            .map(|set| set.into_iter().map(|s| s as usize).collect())
             .collect()
     }
-}
 
-impl Tape {
     /// Whether some output among the first `n` depends on at least `k` distinct columns
     /// of the DAE Jacobian (`u_j` at input slot `u_offset + j` and `u'_j` at
     /// `yp_offset + j` are column `j`). The sets are cut at `k` columns, so this costs
@@ -118,20 +72,37 @@ impl Tape {
                 None
             }
         };
-        let cap = |mut v: Vec<u32>| {
-            v.truncate(k);
-            v
-        };
+        self.dependency_sets(n, column, k)
+            .iter()
+            .any(|set| set.len() >= k)
+    }
+
+    /// The sorted dependency sets of the first `n_outputs` outputs: input slot `s`
+    /// counts as `map(s)` (left out when `None`), and every set is cut to its `cap`
+    /// smallest members. Sets are freed after their last use.
+    fn dependency_sets(
+        &self,
+        n_outputs: usize,
+        map: impl Fn(u32) -> Option<u32>,
+        cap: usize,
+    ) -> Vec<Vec<u32>> {
         let len = self.ops.len();
-        // Sets are freed after their last use (outputs are kept).
         const KEEP: u32 = u32::MAX;
         let mut last_use = vec![0u32; len];
         for (i, op) in self.ops.iter().enumerate() {
             op.for_each_operand(&self.ls, |r| last_use[r as usize] = i as u32);
         }
-        for &o in self.outputs.iter().take(n) {
+        for &o in self.outputs.iter().take(n_outputs) {
             last_use[o as usize] = KEEP;
         }
+        let union = |sets: &[Vec<u32>], operands: &[u32]| {
+            let mut acc: Vec<u32> = Vec::new();
+            for &r in operands {
+                acc = merge(&acc, &sets[r as usize]);
+                acc.truncate(cap);
+            }
+            acc
+        };
         let mut sets: Vec<Vec<u32>> = vec![Vec::new(); len];
         let mut operands: Vec<u32> = Vec::new();
         for (i, &op) in self.ops.iter().enumerate() {
@@ -139,25 +110,22 @@ impl Tape {
             op.for_each_operand(&self.ls, |r| operands.push(r));
             match op {
                 Op::Const(_) | Op::LsPart => {}
-                Op::Input(s) => sets[i] = column(s).into_iter().collect(),
+                Op::Input(s) => sets[i] = map(s).into_iter().collect(),
                 Op::LinearSolve(s) => {
-                    let mut all: Vec<u32> = Vec::new();
-                    for &r in &operands {
-                        all = cap(merge(&all, &sets[r as usize]));
-                    }
-                    let size = self.ls[s as usize].k;
-                    for j in 1..size {
+                    // Many operands: one sort instead of a merge per operand.
+                    let mut all: Vec<u32> = operands
+                        .iter()
+                        .flat_map(|&r| sets[r as usize].iter().copied())
+                        .collect();
+                    all.sort_unstable();
+                    all.dedup();
+                    all.truncate(cap);
+                    for j in 1..self.ls[s as usize].k {
                         sets[i + j] = all.clone();
                     }
                     sets[i] = all;
                 }
-                _ => {
-                    let mut acc: Vec<u32> = Vec::new();
-                    for &r in &operands {
-                        acc = cap(merge(&acc, &sets[r as usize]));
-                    }
-                    sets[i] = acc;
-                }
+                _ => sets[i] = union(&sets, &operands),
             }
             for &r in &operands {
                 if last_use[r as usize] == i as u32 {
@@ -167,8 +135,9 @@ impl Tape {
         }
         self.outputs
             .iter()
-            .take(n)
-            .any(|&o| sets[o as usize].len() >= k)
+            .take(n_outputs)
+            .map(|&o| sets[o as usize].clone())
+            .collect()
     }
 }
 

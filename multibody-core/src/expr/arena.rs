@@ -33,6 +33,15 @@ impl Default for Arena {
     }
 }
 
+/// Entry `i` of a direct index, growing it (doubling, filled with `empty`) when short.
+fn grow_to<T: Copy>(v: &mut Vec<T>, i: u32, empty: T) -> &mut T {
+    let i = i as usize;
+    if v.len() <= i {
+        v.resize((i + 1).max(2 * v.len()), empty);
+    }
+    &mut v[i]
+}
+
 /// Integer value of `x` if it is one that fits an exponent.
 fn as_exponent(x: f64) -> Option<i32> {
     if x.fract() == 0.0 && x.abs() <= 1024.0 {
@@ -98,12 +107,7 @@ impl Arena {
     }
 
     fn leaf_slot(&mut self, i: u32) -> &mut [u32; 2] {
-        let i = i as usize;
-        if self.var_leaf.len() <= i {
-            self.var_leaf
-                .resize((i + 1).max(2 * self.var_leaf.len()), [u32::MAX; 2]);
-        }
-        &mut self.var_leaf[i]
+        grow_to(&mut self.var_leaf, i, [u32::MAX; 2])
     }
 
     fn intern_hashed(&mut self, n: Node) -> Id {
@@ -164,11 +168,7 @@ impl Arena {
             return Id(slot);
         }
         let id = self.intern_hashed(Node::Param(i));
-        if self.param_leaf.len() <= k {
-            self.param_leaf
-                .resize((k + 1).max(2 * self.param_leaf.len()), u32::MAX);
-        }
-        self.param_leaf[k] = id.0;
+        *grow_to(&mut self.param_leaf, i, u32::MAX) = id.0;
         id
     }
 

@@ -299,8 +299,12 @@ fn solve_block(
     let local: HashMap<Id, usize> = vars.iter().enumerate().map(|(i, &v)| (v, i)).collect();
     let mut linear = true;
     let mut teqs = Vec::with_capacity(k);
+    // Per equation: the coefficient of each block unknown it contains (the sparse path
+    // reuses them as matrix entries).
+    let mut coefficients: Vec<Vec<(usize, Id)>> = Vec::with_capacity(k);
     for &r in block_eqs {
         let mut tv = Vec::new();
+        let mut row = Vec::new();
         for l in arena.leaves(r) {
             let Some(&j) = local.get(&l) else { continue };
             let coef = arena.diff(r, l);
@@ -310,8 +314,10 @@ fn solve_block(
             }
             let solvable = !depends && safe_coefficient(arena, coef, temps.params);
             tv.push((j, solvable));
+            row.push((j, coef));
         }
         teqs.push(TearingEquation { vars: tv });
+        coefficients.push(row);
     }
     let tearable: Vec<bool> = vars.iter().map(|v| !temps.never_tear.contains(v)).collect();
     let priority: Vec<f64> = vars
@@ -328,7 +334,16 @@ fn solve_block(
         let too_many_sensitivities =
             torn.len() * (k - torn.len()) > limits.max_inline_sensitivities;
         if limits.sparse_inline && (too_big || too_many_sensitivities) {
-            let left = sparse_linear(arena, block_eqs, eq_ids, vars, limits, temps, out);
+            let left = sparse_linear(
+                arena,
+                block_eqs,
+                coefficients,
+                eq_ids,
+                vars,
+                limits,
+                temps,
+                out,
+            );
             out.blocks.push(BlockInfo {
                 kind: BlockKind::LinearSparse,
                 size: k,
@@ -518,36 +533,33 @@ fn inline_linear(
 }
 
 /// A linear block solved inside by a sparse LU: `A` holds the coefficients of the
-/// block's unknowns in its equations, `c` the equations with the unknowns set to zero.
-/// Emits the sparse LU solve of a linear block after symbolic pre-elimination, and the
-/// back substitution of the eliminated unknowns; returns how many unknowns the LU keeps.
+/// block's unknowns in its equations (`coefficients`, by equation), `c` the equations
+/// with the unknowns set to zero. Emits the sparse LU solve of the block after symbolic
+/// pre-elimination, and the back substitution of the eliminated unknowns; returns how
+/// many unknowns the LU keeps.
+#[allow(clippy::too_many_arguments)]
 fn sparse_linear(
     arena: &mut Arena,
     block_eqs: &[Id],
+    coefficients: Vec<Vec<(usize, Id)>>,
     eq_ids: &[usize],
     vars: &[Id],
     limits: LinearBlockLimits,
     temps: &mut Temporaries<'_>,
     out: &mut Schedule,
 ) -> usize {
-    let local: HashMap<Id, usize> = vars.iter().enumerate().map(|(i, &v)| (v, i)).collect();
     let zero = arena.zero();
     let zeros: HashMap<Id, Id> = vars.iter().map(|&v| (v, zero)).collect();
-    let mut rows = Vec::with_capacity(block_eqs.len());
     let mut memo = HashMap::default();
-    for &r in block_eqs {
-        let mut entries = Vec::new();
-        for l in arena.leaves(r) {
-            if let Some(&col) = local.get(&l) {
-                let coefficient = arena.diff(r, l);
-                if arena.as_const(coefficient) != Some(0.0) {
-                    entries.push((col, coefficient));
-                }
-            }
-        }
-        let c = arena.substitute_leaves_memo(r, &zeros, &mut memo);
-        rows.push(LinearRow { entries, c });
-    }
+    let rows: Vec<LinearRow> = block_eqs
+        .iter()
+        .zip(coefficients)
+        .map(|(&r, mut entries)| {
+            entries.retain(|&(_, a)| arena.as_const(a) != Some(0.0));
+            let c = arena.substitute_leaves_memo(r, &zeros, &mut memo);
+            LinearRow { entries, c }
+        })
+        .collect();
     let params = temps.params;
     let mut compact = |arena: &mut Arena, e: Id| -> Id {
         // A sum of more than two terms becomes a temporary computed before the solve.
