@@ -68,15 +68,16 @@ pub struct TapeBuilder<'a> {
     arena: &'a Arena,
     names: Option<&'a dyn Fn(Id) -> String>,
     n_inputs: usize,
-    ops: Vec<Op>,
+    pub(super) ops: Vec<Op>,
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
     numbering: FastMap<Op, u32>,
     bound: IdMap,
     memo: IdMap,
-    ls: Vec<LsInfo>,
-    outputs: Vec<u32>,
+    pub(super) ls: Vec<LsInfo>,
+    pub(super) outputs: Vec<u32>,
     stack: Vec<(Id, bool)>,
+    invariant_inputs: (usize, usize),
 }
 
 impl<'a> TapeBuilder<'a> {
@@ -95,7 +96,25 @@ impl<'a> TapeBuilder<'a> {
             ls: Vec::new(),
             outputs: Vec::new(),
             stack: Vec::new(),
+            invariant_inputs: (0, 0),
         }
+    }
+
+    /// Declares the input slots `slots` invariant: their values change rarely (the
+    /// tunable parameters of a model). Instructions that depend only on them and on
+    /// constants form the tape's prelude, evaluated first and skipped by later
+    /// evaluations with the same workspace while these inputs keep their values.
+    /// Default: no invariant input (the prelude then holds only constants).
+    ///
+    /// # Panics
+    /// If `slots` is not within `0..n_inputs`.
+    pub fn invariant_inputs(&mut self, slots: std::ops::Range<usize>) {
+        assert!(
+            slots.start <= slots.end && slots.end <= self.n_inputs,
+            "TapeBuilder::invariant_inputs: {slots:?} out of range ({} inputs)",
+            self.n_inputs
+        );
+        self.invariant_inputs = (slots.start, slots.end);
     }
 
     /// The leaf node `leaf` (a `Var`, `Param`, `Time` or `Der` node) reads input slot
@@ -279,7 +298,23 @@ impl<'a> TapeBuilder<'a> {
         let mut new_ops = Vec::with_capacity(live.iter().filter(|&&l| l).count());
         let mut new_ls = Vec::new();
         let (mut lu_len, mut piv_len, mut max_k) = (0, 0, 0);
-        let order = super::schedule::grouped_order(&ops, &ls, &live);
+        // Instructions that depend on nothing but constants and invariant inputs.
+        let (lo, hi) = self.invariant_inputs;
+        let mut invariant = vec![false; n];
+        for i in 0..n {
+            invariant[i] = match ops[i] {
+                Op::Const(_) => true,
+                Op::Input(s) => (lo..hi).contains(&(s as usize)),
+                Op::LinearSolve(_) | Op::LsPart => false,
+                op => {
+                    let mut all = true;
+                    op.for_each_operand(&ls, |r| all &= invariant[r as usize]);
+                    all
+                }
+            };
+        }
+        let order = super::schedule::grouped_order(&ops, &ls, &live, &invariant);
+        let prelude_len = order.iter().take_while(|&&i| invariant[i]).count();
         let mut units = Vec::with_capacity(n);
         for i in order {
             units.push(i);
@@ -320,10 +355,18 @@ impl<'a> TapeBuilder<'a> {
             .iter()
             .map(|&r| new_index[r as usize])
             .collect();
+        let runs = super::tape::runs_of(&new_ops, prelude_len);
+        let prelude_runs = runs
+            .iter()
+            .take_while(|r| (r.end as usize) <= prelude_len)
+            .count();
         static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         Tape {
             id: NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
-            runs: super::tape::runs_of(&new_ops),
+            runs,
+            prelude_runs,
+            prelude_len,
+            invariant_inputs: self.invariant_inputs,
             ops: new_ops,
             consts: self.consts,
             ls: new_ls,
@@ -381,7 +424,7 @@ impl<'a> TapeBuilder<'a> {
 
     /// The value of register `r` if it is a constant.
     #[inline]
-    fn const_value(&self, r: u32) -> Option<f64> {
+    pub(super) fn const_value(&self, r: u32) -> Option<f64> {
         match self.ops[r as usize] {
             Op::Const(k) => Some(self.consts[k as usize]),
             _ => None,
@@ -491,7 +534,7 @@ impl<'a> TapeBuilder<'a> {
 
     /// Emits `op` unless an identical instruction exists or it folds; returns its
     /// register.
-    fn emit(&mut self, op: Op) -> u32 {
+    pub(super) fn emit(&mut self, op: Op) -> u32 {
         if let Some(r) = self.fold(op) {
             return r;
         }
@@ -509,7 +552,7 @@ impl<'a> TapeBuilder<'a> {
         r
     }
 
-    fn const_slot(&mut self, c: f64) -> u32 {
+    pub(super) fn const_slot(&mut self, c: f64) -> u32 {
         let next = self.consts.len() as u32;
         let k = *self.const_index.entry(c.to_bits()).or_insert(next);
         if k == next {
@@ -518,7 +561,7 @@ impl<'a> TapeBuilder<'a> {
         k
     }
 
-    fn constant(&mut self, c: f64) -> u32 {
+    pub(super) fn constant(&mut self, c: f64) -> u32 {
         let k = self.const_slot(c);
         self.emit(Op::Const(k))
     }

@@ -102,6 +102,9 @@ fn builder<'a>(
     layout: InputLayout,
 ) -> Result<TapeBuilder<'a>, CodegenError> {
     let mut b = TapeBuilder::new(arena, layout.len()).with_names(spec.names);
+    // Parameters change only between problems: what depends on nothing else is
+    // computed once per workspace and parameter set.
+    b.invariant_inputs(layout.param(0)..layout.param(layout.n_params));
     if let Some(t) = leaves.time {
         b.input(t, InputLayout::TIME);
     }
@@ -179,30 +182,7 @@ pub(crate) fn compile_dae(
         }
     }
     let residual = b.build();
-    let extended = ExtendedJacobian::new(
-        &residual,
-        layout.n,
-        layout.u(0),
-        layout.up(0),
-        DEFAULT_MAX_FILL,
-    );
-    // The plain Jacobian needs at least as many colours as its densest row has
-    // entries: when that alone rules it out, it is not built now.
-    let jacobian = std::sync::OnceLock::new();
-    let use_extended = if residual.column_degree_reaches(
-        layout.n,
-        layout.u(0),
-        layout.up(0),
-        2 * extended.n_colors(),
-    ) {
-        true
-    } else {
-        let plain = DaeJacobian::new(&residual, layout.n, layout.u(0), layout.up(0));
-        let better = prefer_extended(&plain, &extended);
-        let _ = jacobian.set(plain);
-        better
-    };
-    let extended = Some(extended).filter(|_| use_extended);
+    let (jacobian, extended) = jacobians(&residual, layout);
     let mut b = builder(arena, &leaves, spec, layout)?;
     let mut observed_names = Vec::with_capacity(spec.observed.len());
     for (name, e) in spec.observed {
@@ -220,7 +200,60 @@ pub(crate) fn compile_dae(
     })
 }
 
+/// The Jacobians of `residual`: the extended one when it is worth its extra rows, and
+/// the plain one when it was built to decide that.
+fn jacobians(
+    residual: &Tape,
+    layout: InputLayout,
+) -> (std::sync::OnceLock<DaeJacobian>, Option<ExtendedJacobian>) {
+    let extended = ExtendedJacobian::new(
+        residual,
+        layout.n,
+        layout.u(0),
+        layout.up(0),
+        DEFAULT_MAX_FILL,
+    );
+    // The plain Jacobian needs at least as many colours as its densest row has
+    // entries: when that alone rules it out, it is not built now.
+    let jacobian = std::sync::OnceLock::new();
+    let use_extended = if residual.column_degree_reaches(
+        layout.n,
+        layout.u(0),
+        layout.up(0),
+        2 * extended.n_colors(),
+    ) {
+        true
+    } else {
+        let plain = DaeJacobian::new(residual, layout.n, layout.u(0), layout.up(0));
+        let better = prefer_extended(&plain, &extended);
+        let _ = jacobian.set(plain);
+        better
+    };
+    (jacobian, Some(extended).filter(|_| use_extended))
+}
+
 impl CompiledDae {
+    /// The residual and its Jacobians specialized to the parameter values `params`
+    /// (one per parameter input; see [`Tape::specialize`]): what folds with those
+    /// values is folded, so a problem whose parameters are zero or one where a model
+    /// allows any value pays nothing for that generality. The observed function is
+    /// shared unchanged.
+    ///
+    /// # Panics
+    /// If `params` does not have [`InputLayout::n_params`] values.
+    pub fn specialize(&self, params: &[f64]) -> CompiledDae {
+        let residual = self.residual.specialize(params);
+        let (jacobian, extended) = jacobians(&residual, self.layout);
+        CompiledDae {
+            layout: self.layout,
+            residual,
+            jacobian,
+            extended,
+            observed: self.observed.clone(),
+            observed_names: self.observed_names.clone(),
+        }
+    }
+
     /// The Jacobian pattern, colouring and evaluator for [`Self::residual`] (the
     /// reduced one, without the extended Jacobian's intermediate unknowns).
     pub fn jacobian(&self) -> &DaeJacobian {

@@ -49,6 +49,8 @@ pub struct ExtendedJacobian {
     cut_of: Vec<u32>,
     n_cuts: usize,
     coloring: Coloring,
+    /// Whether a cut lies in the tape's prelude (which then cannot be skipped).
+    prelude_has_cut: bool,
 }
 
 /// Scratch memory for [`ExtendedJacobian::eval`].
@@ -270,6 +272,8 @@ impl ExtendedJacobian {
             }
         }
         let dim = n + n_cuts;
+        // A cut in the prelude must pass through the forward hook: no skipping then.
+        let prelude_has_cut = is_cut[..tape.prelude_len].iter().any(|&c| c);
         // Dependencies with the final cuts (a cut register reads as its own column).
         let mut deps: Vec<Vec<u32>> = vec![Vec::new(); nregs];
         let mut rows: Vec<Vec<usize>> = vec![Vec::new(); dim];
@@ -333,6 +337,7 @@ impl ExtendedJacobian {
             cut_of,
             n_cuts,
             coloring,
+            prelude_has_cut,
         }
     }
 
@@ -475,11 +480,13 @@ impl ExtendedJacobian {
             lu,
             piv,
             sparse,
+            prelude,
             ..
         } = ws;
         let regs = &mut regs[..nregs];
         let tan = &mut tan[..nregs * w];
         let cut_of = &self.cut_of[..];
+        let skip = prelude.forward_pass(tape, inputs, seeds, w, tan, !self.prelude_has_cut);
         // Borrowed by both hooks; they never run at the same time.
         let cut_rows = std::cell::RefCell::new(cut_rows);
         forward_core(
@@ -489,6 +496,7 @@ impl ExtendedJacobian {
             w,
             regs,
             tan,
+            skip,
             |i, s, regs, done, rest| {
                 let info = &tape.ls[s as usize];
                 solve_linear(info, s as usize, i, regs, lu, piv, sparse)?;

@@ -197,10 +197,12 @@ impl Tape {
             piv,
             rhs,
             sparse,
+            prelude,
         } = ws;
         let regs = &mut regs[..n];
         let tan = &mut tan[..n * lanes];
         let w = lanes;
+        let skip = prelude.forward_pass(self, inputs, seeds, w, tan, true);
         forward_core(
             self,
             inputs,
@@ -208,6 +210,7 @@ impl Tape {
             w,
             regs,
             tan,
+            skip,
             |i, s, regs, done, rest| {
                 // A x + c = 0  =>  A dx = -(dA x + dc).
                 let info = &self.ls[s as usize];
@@ -263,7 +266,8 @@ impl Tape {
 /// `linear_solve(i, s, regs, done, rest)` computes the values and tangents of linear
 /// solve `s` at register `i` (tangents of earlier registers in `done`, its own from the
 /// start of `rest`); `after(i, t)` may rewrite the tangent of instruction `i` (not
-/// called for linear solves).
+/// called for linear solves). The first `skip` runs (at most the prelude, whose values
+/// and tangents the caller knows) are not evaluated.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub(crate) fn forward_core(
@@ -273,6 +277,7 @@ pub(crate) fn forward_core(
     w: usize,
     regs: &mut [f64],
     tan: &mut [f64],
+    skip: usize,
     mut linear_solve: impl FnMut(usize, u32, &mut [f64], &[f64], &mut [f64]) -> Result<(), EvalError>,
     mut after: impl FnMut(usize, &mut [f64]),
 ) -> Result<(), EvalError> {
@@ -296,7 +301,7 @@ pub(crate) fn forward_core(
             }
         };
     }
-    for run in &tape.runs {
+    for run in &tape.runs[skip..] {
         match run.kind {
             RunKind::Const => each!(run, Op::Const(k) => consts[k as usize], |t, _v, _tr| {
                 t.fill(0.0);

@@ -20,12 +20,15 @@ mod extended;
 mod forward;
 mod schedule;
 mod sparsity;
+mod specialize;
 mod tape;
 
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
 mod tests_extended;
+#[cfg(test)]
+mod tests_specialize;
 
 pub use crate::solve::ida::EvalError;
 pub use compile::TapeBuilder;

@@ -33,10 +33,16 @@ const KINDS: usize = 48;
 
 /// The live instructions of `ops` (`live[i]`) in an order that respects dependencies
 /// and groups kinds: repeatedly, every ready instruction of the kind with the most ready
-/// instructions is emitted, in original order. A linear solve and the parts that follow
-/// it stay together. Returns old indices (heads of linear solves stand for the solve
-/// and its parts, which the caller appends).
-pub(crate) fn grouped_order(ops: &[Op], ls: &[LsInfo], live: &[bool]) -> Vec<usize> {
+/// instructions is emitted, in original order. The instructions marked `first` (closed
+/// under dependencies: their operands are marked too) all come before the others. A
+/// linear solve and the parts that follow it stay together. Returns old indices (heads
+/// of linear solves stand for the solve and its parts, which the caller appends).
+pub(crate) fn grouped_order(
+    ops: &[Op],
+    ls: &[LsInfo],
+    live: &[bool],
+    first: &[bool],
+) -> Vec<usize> {
     let n = ops.len();
     // Head of the unit each register belongs to (a part belongs to its solve).
     let mut head = vec![0u32; n];
@@ -74,32 +80,37 @@ pub(crate) fn grouped_order(ops: &[Op], ls: &[LsInfo], live: &[bool]) -> Vec<usi
         succ[fill[p as usize] as usize] = s;
         fill[p as usize] += 1;
     }
-    let mut ready: Vec<Vec<u32>> = vec![Vec::new(); KINDS];
+    // Ready instructions by kind, the `first` ones at `KINDS + kind`.
+    let slot = |i: usize| kind(&ops[i]) + if first[i] { KINDS } else { 0 };
+    let mut ready: Vec<Vec<u32>> = vec![Vec::new(); 2 * KINDS];
     for (i, op) in ops.iter().enumerate() {
         if live[i] && !matches!(op, Op::LsPart) && indegree[i] == 0 {
-            ready[kind(op)].push(i as u32);
+            ready[slot(i)].push(i as u32);
         }
     }
     let mut order = Vec::with_capacity(n);
     let mut batch: Vec<u32> = Vec::new();
-    while let Some(k) = (0..KINDS)
-        .filter(|&k| !ready[k].is_empty())
-        .max_by_key(|&k| (ready[k].len(), std::cmp::Reverse(k)))
-    {
-        std::mem::swap(&mut batch, &mut ready[k]);
-        batch.sort_unstable();
-        for &i in &batch {
-            order.push(i as usize);
-            let iu = i as usize;
-            for &s in &succ[succ_ptr[iu] as usize..succ_ptr[iu + 1] as usize] {
-                let su = s as usize;
-                indegree[su] -= 1;
-                if indegree[su] == 0 {
-                    ready[kind(&ops[su])].push(s);
+    for phase in [KINDS..2 * KINDS, 0..KINDS] {
+        while let Some(k) = phase
+            .clone()
+            .filter(|&k| !ready[k].is_empty())
+            .max_by_key(|&k| (ready[k].len(), std::cmp::Reverse(k)))
+        {
+            std::mem::swap(&mut batch, &mut ready[k]);
+            batch.sort_unstable();
+            for &i in &batch {
+                order.push(i as usize);
+                let iu = i as usize;
+                for &s in &succ[succ_ptr[iu] as usize..succ_ptr[iu + 1] as usize] {
+                    let su = s as usize;
+                    indegree[su] -= 1;
+                    if indegree[su] == 0 {
+                        ready[slot(su)].push(s);
+                    }
                 }
             }
+            batch.clear();
         }
-        batch.clear();
     }
     order
 }

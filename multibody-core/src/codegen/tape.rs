@@ -200,13 +200,13 @@ pub(crate) struct Run {
     pub(crate) end: u32,
 }
 
-/// The runs of `ops`, in order.
-pub(crate) fn runs_of(ops: &[Op]) -> Vec<Run> {
+/// The runs of `ops`, in order, with no run crossing `split` (the end of the prelude).
+pub(crate) fn runs_of(ops: &[Op], split: usize) -> Vec<Run> {
     let mut runs: Vec<Run> = Vec::new();
     for (i, op) in ops.iter().enumerate() {
         let kind = RunKind::of(op);
         match runs.last_mut() {
-            Some(r) if r.kind == kind => r.end = i as u32 + 1,
+            Some(r) if r.kind == kind && i != split => r.end = i as u32 + 1,
             _ => runs.push(Run {
                 kind,
                 start: i as u32,
@@ -234,6 +234,12 @@ pub struct Tape {
     pub(crate) lu_len: usize,
     pub(crate) piv_len: usize,
     pub(crate) max_k: usize,
+    /// The prelude: instructions `0..prelude_len` depend only on constants and the
+    /// invariant inputs; they are the first `prelude_runs` runs.
+    pub(crate) prelude_len: usize,
+    pub(crate) prelude_runs: usize,
+    /// The input slots that rarely change (parameters), `start..end`.
+    pub(crate) invariant_inputs: (usize, usize),
 }
 
 /// Scratch memory for evaluating a [`Tape`]: registers, tangents and linear-solve
@@ -249,6 +255,87 @@ pub struct Workspace {
     /// Factorizations of the sparse linear solves, by linear-solve index, for the tape
     /// `sparse_for`.
     pub(crate) sparse: SparseSolves,
+    /// What the registers of a tape's prelude were last computed from.
+    pub(crate) prelude: PreludeCache,
+}
+
+/// What the prelude registers in a [`Workspace`] hold: the tape and the values of its
+/// invariant inputs they were computed for, and the lanes for which their tangents are
+/// known to be zero.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PreludeCache {
+    /// Id of the tape (0: none).
+    tape: u64,
+    /// The invariant inputs the prelude values were computed from.
+    inputs: Vec<f64>,
+    /// Number of lanes whose prelude tangents are all zero (0: unknown).
+    zero_tangent_lanes: usize,
+}
+
+impl PreludeCache {
+    /// Whether the prelude registers hold `tape`'s prelude at `inputs`.
+    #[inline]
+    fn holds(&self, tape: &Tape, inputs: &[f64]) -> bool {
+        let (a, b) = tape.invariant_inputs;
+        self.tape == tape.id && self.inputs[..] == inputs[a..b]
+    }
+
+    /// Records that the prelude registers now hold `tape`'s prelude at `inputs`.
+    fn record(&mut self, tape: &Tape, inputs: &[f64]) {
+        if self.tape != tape.id {
+            // The tangent buffer holds another tape's tangents.
+            self.zero_tangent_lanes = 0;
+        }
+        self.tape = tape.id;
+        let (a, b) = tape.invariant_inputs;
+        self.inputs.clear();
+        self.inputs.extend_from_slice(&inputs[a..b]);
+    }
+
+    /// Before a value pass (no tangents) of `tape` at `inputs`: the number of leading
+    /// runs to skip, recording the prelude as computed.
+    #[inline]
+    pub(crate) fn value_pass(&mut self, tape: &Tape, inputs: &[f64]) -> usize {
+        if tape.prelude_len == 0 {
+            return 0;
+        }
+        if self.holds(tape, inputs) {
+            return tape.prelude_runs;
+        }
+        self.record(tape, inputs);
+        0
+    }
+
+    /// Before a forward pass of `tape` at `inputs` with `lanes` tangent lanes seeded by
+    /// `seeds`: the number of leading runs to skip. When the prelude is skipped, its
+    /// tangents in `tan` are zero (filled here when they may not be); `allow` false
+    /// forbids skipping (a hook must see every instruction).
+    pub(crate) fn forward_pass(
+        &mut self,
+        tape: &Tape,
+        inputs: &[f64],
+        seeds: &[f64],
+        lanes: usize,
+        tan: &mut [f64],
+        allow: bool,
+    ) -> usize {
+        if tape.prelude_len == 0 {
+            return 0;
+        }
+        let (a, b) = tape.invariant_inputs;
+        let unseeded = seeds[a * lanes..b * lanes].iter().all(|&s| s == 0.0);
+        if allow && unseeded && self.holds(tape, inputs) {
+            if self.zero_tangent_lanes != lanes {
+                tan[..tape.prelude_len * lanes].fill(0.0);
+                self.zero_tangent_lanes = lanes;
+            }
+            return tape.prelude_runs;
+        }
+        self.record(tape, inputs);
+        // The full pass computes the prelude tangents from the seeds.
+        self.zero_tangent_lanes = if unseeded { lanes } else { 0 };
+        0
+    }
 }
 
 /// The sparse LU factorizations of a tape's sparse linear solves (kept between calls so
@@ -547,6 +634,15 @@ impl Tape {
         self.runs.len()
     }
 
+    /// Number of instructions in the prelude: those that depend only on constants and
+    /// the invariant inputs (see [`TapeBuilder::invariant_inputs`]), evaluated once per
+    /// workspace and value of those inputs.
+    ///
+    /// [`TapeBuilder::invariant_inputs`]: super::TapeBuilder::invariant_inputs
+    pub fn prelude_len(&self) -> usize {
+        self.prelude_len
+    }
+
     /// Whether the tape has no instruction.
     pub fn is_empty(&self) -> bool {
         self.ops.is_empty()
@@ -584,6 +680,7 @@ impl Tape {
             "Tape::eval: output buffer too short"
         );
         ws.fit(self, 0);
+        let skip = ws.prelude.value_pass(self, inputs);
         let Workspace {
             regs,
             lu,
@@ -603,7 +700,7 @@ impl Tape {
                 }
             };
         }
-        for run in &self.runs {
+        for run in &self.runs[skip..] {
             match run.kind {
                 RunKind::Const => each!(run, Op::Const(k) => consts[k as usize]),
                 RunKind::Input => each!(run, Op::Input(s) => inputs[s as usize]),

@@ -30,6 +30,10 @@ pub(crate) enum LuFailure {
     Fatal(String),
 }
 
+/// Newton iterations expected per factorization of IDA's iteration matrix, for the
+/// choice of the column order (see `SparseLu::solves_per_factorization`).
+const SOLVES_PER_FACTORIZATION: usize = 20;
+
 /// Sparse LU state: the pattern of the last factorized matrix, its symbolic
 /// analysis and the numeric factorization.
 #[derive(Default)]
@@ -111,6 +115,9 @@ impl IterationLu {
                 ));
             }
             self.lu.reset(n, &self.col_ptr, &self.row_idx);
+            // IDA solves with one iteration matrix for many Newton iterations (about
+            // 80 per factorization on the 100-link pendulum).
+            self.lu.solves_per_factorization = SOLVES_PER_FACTORIZATION;
             self.analysed = true;
             self.symbolic_analyses += 1;
             log::debug!(

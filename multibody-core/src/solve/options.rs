@@ -47,6 +47,12 @@ pub struct SolverOptions {
     /// integrator's tolerance; the integration is not affected (default true; skipped
     /// for more than 64 algebraic unknowns).
     pub project_outputs: bool,
+    /// Before integrating, specialize the residual and its Jacobian to this problem's
+    /// parameter values (`CompiledDae::specialize`): terms that vanish for these values
+    /// (a zero offset, a unit factor) are dropped, so tunable parameters cost about
+    /// what folded ones do. Takes a few milliseconds per 10 000 instructions; results
+    /// agree with the unspecialized functions to rounding (default true).
+    pub specialize_parameters: bool,
 }
 
 impl Default for SolverOptions {
@@ -61,6 +67,7 @@ impl Default for SolverOptions {
             suppress_alg: true,
             linear_solver: LinearSolverChoice::Auto,
             project_outputs: true,
+            specialize_parameters: true,
         }
     }
 }

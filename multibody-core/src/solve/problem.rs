@@ -251,7 +251,13 @@ impl<'a> DaeProblem<'a> {
     /// Integrates with IDA.
     pub fn solve(&self, options: &SolverOptions) -> Result<Solution, Error> {
         let sys = self.sys;
-        let c = &sys.compiled;
+        let specialized;
+        let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
+            specialized = sys.compiled.specialize(&self.params);
+            &specialized
+        } else {
+            &sys.compiled
+        };
         let n = self.u0.len();
         let (linear_solver, extended) = match options.linear_solver {
             LinearSolverChoice::Auto if n <= 24 => (LinearSolver::Dense, false),
