@@ -65,6 +65,13 @@ pub(crate) struct SparseLu {
     /// Reciprocals of the pivots (the solve multiplies instead of dividing: a division
     /// on the critical path of the back substitution cost a quarter of its time).
     u_inv_diag: Vec<f64>,
+    /// The replay program, compact (32-bit indices; refactorization and solves are
+    /// bound by memory traffic): per `U` entry its pivot row and the range of the `L`
+    /// column of its step; `L`'s rows; `U`'s steps.
+    replay_u_row: Vec<u32>,
+    replay_u_l: Vec<(u32, u32)>,
+    replay_l_row: Vec<u32>,
+    replay_u_step: Vec<u32>,
     /// Whether the factors hold a complete factorization whose patterns can be replayed.
     factored: bool,
     /// Dense work vector by original row (kept zero between columns).
@@ -111,16 +118,28 @@ impl SparseLu {
         row_idx: &[usize],
         values: &[f64],
     ) -> Result<(), LuError> {
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        self.factorize_with(col_ptr, row_idx, |p| values[p])
+    }
+
+    /// [`factorize`](Self::factorize) with entry `p` (CSC order) given by `value(p)`
+    /// (read in place, with no copy into a value array).
+    pub(crate) fn factorize_with(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        value: impl Fn(usize) -> f64 + Copy,
+    ) -> Result<(), LuError> {
+        let nnz = col_ptr.get(self.n).copied().unwrap_or(0);
+        if let Some(k) = (0..nnz).position(|p| !value(p).is_finite()) {
             self.factored = false;
             return Err(LuError::Singular(format!("matrix entry {k} is not finite")));
         }
-        if self.factored && self.refactor(col_ptr, row_idx, values) {
+        if self.factored && self.refactor(col_ptr, row_idx, value) {
             self.refactorizations += 1;
             return Ok(());
         }
         self.pivoting_factorizations += 1;
-        let r = self.factor_with_pivoting(col_ptr, row_idx, values);
+        let r = self.factor_with_pivoting(col_ptr, row_idx, value);
         self.factored = r.is_ok();
         if r.is_ok() && !self.alternative_orders.is_empty() {
             // First factorization of this pattern: try the other orders too and keep
@@ -130,7 +149,7 @@ impl SparseLu {
             let mut best = self.clone();
             for order in orders {
                 self.col_order = order;
-                let ok = self.factor_with_pivoting(col_ptr, row_idx, values).is_ok();
+                let ok = self.factor_with_pivoting(col_ptr, row_idx, value).is_ok();
                 log::debug!(
                     "sparse LU order (n = {}): {} factor entries and {} refactor multiply-adds against {} and {}",
                     self.n,
@@ -154,7 +173,7 @@ impl SparseLu {
         &mut self,
         col_ptr: &[usize],
         row_idx: &[usize],
-        values: &[f64],
+        value: impl Fn(usize) -> f64,
     ) -> Result<(), LuError> {
         let n = self.n;
         self.pivot_row.clear();
@@ -188,7 +207,7 @@ impl SparseLu {
                 }
             }
             for p in entries {
-                self.work[row_idx[p]] = values[p];
+                self.work[row_idx[p]] = value(p);
             }
             // Eliminate with the earlier steps, in topological order.
             for idx in (0..self.reach.len()).rev() {
@@ -248,7 +267,28 @@ impl SparseLu {
             self.l_ptr.push(self.l_row.len());
             self.u_ptr.push(self.u_step.len());
         }
+        self.build_replay();
         Ok(())
+    }
+
+    /// Records the patterns of a finished factorization as the replay program.
+    fn build_replay(&mut self) {
+        let small = |v: usize| u32::try_from(v).expect("sparse LU larger than 2^32 entries");
+        self.replay_u_row.clear();
+        self.replay_u_row
+            .extend(self.u_row.iter().map(|&r| small(r)));
+        self.replay_u_step.clear();
+        self.replay_u_step
+            .extend(self.u_step.iter().map(|&s| small(s)));
+        self.replay_u_l.clear();
+        self.replay_u_l.extend(
+            self.u_step
+                .iter()
+                .map(|&s| (small(self.l_ptr[s]), small(self.l_ptr[s + 1]))),
+        );
+        self.replay_l_row.clear();
+        self.replay_l_row
+            .extend(self.l_row.iter().map(|&r| small(r)));
     }
 
     /// Depth-first search from row `r` through `L`'s columns, appending rows in
@@ -286,26 +326,36 @@ impl SparseLu {
 
     /// Recomputes the factors with the recorded pivots and patterns; `false` if a pivot
     /// became too small (the factors are then invalid).
-    fn refactor(&mut self, col_ptr: &[usize], row_idx: &[usize], values: &[f64]) -> bool {
+    fn refactor(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        value: impl Fn(usize) -> f64,
+    ) -> bool {
         let n = self.n;
         // Local slices: the compiler keeps their pointers in registers.
         let SparseLu {
             col_order,
             pivot_row,
             l_ptr,
-            l_row,
             l_val,
             u_ptr,
-            u_step,
-            u_row,
             u_val,
             u_inv_diag,
             work,
+            replay_u_row,
+            replay_u_l,
+            replay_l_row,
             ..
         } = self;
         let (col_order, pivot_row) = (&col_order[..n], &pivot_row[..n]);
-        let (l_ptr, l_row, u_ptr, u_step, u_row) =
-            (&l_ptr[..], &l_row[..], &u_ptr[..], &u_step[..], &u_row[..]);
+        let (l_ptr, u_ptr, u_row, u_l, l_row) = (
+            &l_ptr[..],
+            &u_ptr[..],
+            &replay_u_row[..],
+            &replay_u_l[..],
+            &replay_l_row[..],
+        );
         let (l_val, u_val, u_inv_diag, work) = (
             &mut l_val[..],
             &mut u_val[..],
@@ -316,17 +366,20 @@ impl SparseLu {
         for k in 0..n {
             let col = col_order[k];
             for p in col_ptr[col]..col_ptr[col + 1] {
-                work[row_idx[p]] = values[p];
+                work[row_idx[p]] = value(p);
             }
-            for q in u_ptr[k]..u_ptr[k + 1] {
-                let r = u_row[q];
-                let x = work[r];
-                work[r] = 0.0;
-                u_val[q] = x;
-                let s = u_step[q];
-                let (a, b) = (l_ptr[s], l_ptr[s + 1]);
+            let (u0, u1) = (u_ptr[k], u_ptr[k + 1]);
+            for ((&r, &(a, b)), u) in u_row[u0..u1]
+                .iter()
+                .zip(&u_l[u0..u1])
+                .zip(&mut u_val[u0..u1])
+            {
+                let x = work[r as usize];
+                work[r as usize] = 0.0;
+                *u = x;
+                let (a, b) = (a as usize, b as usize);
                 for (&row, &l) in l_row[a..b].iter().zip(&l_val[a..b]) {
-                    work[row] -= l * x;
+                    work[row as usize] -= l * x;
                 }
             }
             let pr = pivot_row[k];
@@ -337,10 +390,10 @@ impl SparseLu {
             let (a, b) = (l_ptr[k], l_ptr[k + 1]);
             let mut below = 0.0f64;
             for (&row, l) in l_row[a..b].iter().zip(&mut l_val[a..b]) {
-                let w = work[row];
+                let w = work[row as usize];
                 below = below.max(w.abs());
                 *l = w * inv;
-                work[row] = 0.0;
+                work[row as usize] = 0.0;
             }
             // A replayed pivot must stay finite and not small next to the entries below.
             ok &=
@@ -359,7 +412,7 @@ impl SparseLu {
         let (pivot_row, l_ptr, l_row, l_val) = (
             &self.pivot_row[..n],
             &self.l_ptr[..],
-            &self.l_row[..],
+            &self.replay_l_row[..],
             &self.l_val[..],
         );
         // Forward: L z = P b, in original row indexing.
@@ -368,7 +421,7 @@ impl SparseLu {
             if v != 0.0 {
                 let (a, b) = (l_ptr[k], l_ptr[k + 1]);
                 for (&row, &l) in l_row[a..b].iter().zip(&l_val[a..b]) {
-                    x[row] -= l * v;
+                    x[row as usize] -= l * v;
                 }
             }
         }
@@ -377,7 +430,7 @@ impl SparseLu {
         let z = &mut scratch[..n];
         let (u_ptr, u_step, u_val, u_inv_diag) = (
             &self.u_ptr[..],
-            &self.u_step[..],
+            &self.replay_u_step[..],
             &self.u_val[..],
             &self.u_inv_diag[..n],
         );
@@ -388,7 +441,7 @@ impl SparseLu {
             if y != 0.0 {
                 let (a, b) = (u_ptr[k], u_ptr[k + 1]);
                 for (&s, &u) in u_step[a..b].iter().zip(&u_val[a..b]) {
-                    z[s] -= u * y;
+                    z[s as usize] -= u * y;
                 }
             }
         }

@@ -345,7 +345,6 @@ pub(crate) struct SparseSolves {
     /// Id of the tape these belong to (0: none).
     pub(crate) tape: u64,
     pub(crate) lu: Vec<SparseLu>,
-    pub(crate) values: Vec<f64>,
     pub(crate) scratch: Vec<f64>,
 }
 
@@ -469,15 +468,14 @@ pub(crate) fn solve_linear(
     };
     if let Some(pattern) = &info.sparse {
         let SparseSolves {
-            lu: lus,
-            values,
-            scratch,
-            ..
+            lu: lus, scratch, ..
         } = sparse;
-        values.clear();
-        values.extend(info.a.iter().map(|&r| regs[r as usize]));
+        let a = &info.a[..];
+        let regs_ro: &[f64] = regs;
         if let Err(LuError::Singular(m)) =
-            lus[s].factorize(&pattern.col_ptr, &pattern.row_idx, values)
+            lus[s].factorize_with(&pattern.col_ptr, &pattern.row_idx, |p| {
+                regs_ro[a[p] as usize]
+            })
         {
             return Err(err(&format!("is singular ({m})")));
         }

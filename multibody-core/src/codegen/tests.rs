@@ -401,7 +401,7 @@ fn tridiagonal_jacobian_is_exact_with_three_colours() {
 
 #[test]
 fn jacobian_with_many_colours_matches_dense_forward() {
-    // Rows depending on many columns force several passes of 16 lanes.
+    // Rows depending on many columns (40 colours) force several passes of 24 lanes.
     let n = 40;
     let mut a = Arena::new();
     let u: Vec<Id> = (0..n as u32).map(|i| a.var(i)).collect();
