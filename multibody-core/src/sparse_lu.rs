@@ -2,11 +2,15 @@
 //! changes during an integration and the values change slowly, so the pivot sequence of
 //! one factorization usually serves the next ones.
 //!
-//! The first factorization of a pattern orders the columns by COLAMD (from faer), and
-//! again by AMD on the pattern with a maximum transversal on its diagonal (KLU's
-//! order), and keeps the order whose refactorizations cost fewer multiply-adds (AMD
-//! halves them on a 100-link pendulum's acceleration block; COLAMD is better on IDA's
-//! extended Jacobians). Each runs a left-looking Gilbert-Peierls LU with threshold
+//! The first factorization of a pattern orders the columns by COLAMD (from faer), again
+//! by AMD on the pattern with a maximum transversal on its diagonal (KLU's order), and
+//! by COLAMD on [`SHUFFLED_COLAMD_TRIALS`] shuffles of the columns (COLAMD breaks ties
+//! by position, and on extended Jacobians its fill varies by up to a factor of two with
+//! the input order), and keeps the order whose factorization and expected solves cost
+//! the fewest multiply-adds (see [`SparseLu::solves_per_factorization`]; AMD halves
+//! them on a 100-link pendulum's acceleration block, COLAMD is better on IDA's extended
+//! Jacobians, a shuffle took the 100-link pendulum's iteration matrix from 11 488 to
+//! 8 289 factor entries). Each runs a left-looking Gilbert-Peierls LU with threshold
 //! partial pivoting (the row a maximum transversal matched to the column is kept when it
 //! is within a factor of [`DIAGONAL_PREFERENCE`] of the largest candidate) and records
 //! the pivot rows and the patterns of `L` and `U`.
@@ -104,10 +108,19 @@ impl SparseLu {
         self.pattern_nnz = col_ptr.get(n).copied().unwrap_or(0);
         self.factored = false;
         (self.col_order, self.preferred_row) = ordering(n, col_ptr, row_idx);
-        self.alternative_orders = matched_amd_order(n, col_ptr, row_idx, &self.preferred_row)
-            .into_iter()
-            .filter(|o| *o != self.col_order)
-            .collect();
+        let mut orders: Vec<Vec<usize>> =
+            matched_amd_order(n, col_ptr, row_idx, &self.preferred_row)
+                .into_iter()
+                .collect();
+        // COLAMD breaks ties by position: on extended Jacobians its fill varies by a
+        // factor of two with the order the columns come in. Shuffled inputs give it
+        // other chances (deterministic seeds).
+        for seed in 1..=SHUFFLED_COLAMD_TRIALS as u64 {
+            orders.push(shuffled_column_order(n, col_ptr, row_idx, seed));
+        }
+        orders.retain(|o| *o != self.col_order);
+        orders.dedup();
+        self.alternative_orders = orders;
     }
 
     /// Factorizes the `n x n` CSC matrix (pattern as given to [`reset`](Self::reset)),
@@ -558,6 +571,35 @@ fn matched_amd_order(
     faer::sparse::linalg::amd::order(&mut perm, &mut perm_inv, sym, Default::default(), stack)
         .ok()?;
     Some(perm)
+}
+
+/// Number of COLAMD orders of shuffled columns tried at a pattern's first factorization
+/// besides COLAMD's own and AMD's.
+const SHUFFLED_COLAMD_TRIALS: usize = 6;
+
+/// COLAMD's order for the pattern with its columns shuffled (a fixed permutation per
+/// `seed`), mapped back to the original columns.
+fn shuffled_column_order(n: usize, col_ptr: &[usize], row_idx: &[usize], seed: u64) -> Vec<usize> {
+    let mut perm: Vec<usize> = (0..n).collect();
+    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    for i in (1..n).rev() {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let j = ((state >> 33) as usize) % (i + 1);
+        perm.swap(i, j);
+    }
+    let mut s_ptr = Vec::with_capacity(n + 1);
+    let mut s_idx = Vec::with_capacity(row_idx.len());
+    s_ptr.push(0);
+    for &c in &perm {
+        s_idx.extend_from_slice(&row_idx[col_ptr[c]..col_ptr[c + 1]]);
+        s_ptr.push(s_idx.len());
+    }
+    column_order(n, &s_ptr, &s_idx)
+        .into_iter()
+        .map(|k| perm[k])
+        .collect()
 }
 
 /// COLAMD column order of the pattern (identity if faer cannot allocate its scratch).

@@ -21,6 +21,7 @@ mod forward;
 mod schedule;
 mod sparsity;
 mod specialize;
+mod specialize_solve;
 mod tape;
 
 #[cfg(test)]
