@@ -5,6 +5,15 @@
 use crate::expr::{Arena, Id, Node, is_leaf};
 
 use super::tape::{LsInfo, Op, SparsePattern, Tape};
+
+use hashbrown::HashTable;
+
+/// Hash of an instruction for value numbering.
+#[inline]
+fn hash_op(op: &Op) -> u64 {
+    use std::hash::BuildHasher;
+    crate::hash::FastBuild::default().hash_one(op)
+}
 use super::{CodegenError, Stmt};
 
 /// A hash map with the fast hasher.
@@ -71,7 +80,9 @@ pub struct TapeBuilder<'a> {
     pub(super) ops: Vec<Op>,
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
-    numbering: FastMap<Op, u32>,
+    /// Registers of the emitted instructions by the instruction's hash (value
+    /// numbering); 4 bytes per entry, the instruction itself is read from `ops`.
+    numbering: HashTable<u32>,
     bound: IdMap,
     memo: IdMap,
     pub(super) ls: Vec<LsInfo>,
@@ -90,7 +101,7 @@ impl<'a> TapeBuilder<'a> {
             ops: Vec::new(),
             consts: Vec::new(),
             const_index: FastMap::default(),
-            numbering: FastMap::default(),
+            numbering: HashTable::new(),
             bound: IdMap::new(arena.len()),
             memo: IdMap::new(arena.len()),
             ls: Vec::new(),
@@ -543,12 +554,16 @@ impl<'a> TapeBuilder<'a> {
             Op::Mul(a, b) if b < a => Op::Mul(b, a),
             op => op,
         };
-        if let Some(&r) = self.numbering.get(&op) {
+        let h = hash_op(&op);
+        let ops = &self.ops;
+        if let Some(&r) = self.numbering.find(h, |&i| ops[i as usize] == op) {
             return r;
         }
         let r = self.ops.len() as u32;
         self.ops.push(op);
-        self.numbering.insert(op, r);
+        let ops = &self.ops;
+        self.numbering
+            .insert_unique(h, r, |&i| hash_op(&ops[i as usize]));
         r
     }
 
