@@ -332,8 +332,9 @@ impl PreludeCache {
             return tape.prelude_runs;
         }
         self.record(tape, inputs);
-        // The full pass computes the prelude tangents from the seeds.
-        self.zero_tangent_lanes = if unseeded { lanes } else { 0 };
+        // The full pass computes the prelude tangents from the seeds; a hook that sees
+        // every instruction (`allow` false) may set some to nonzero values.
+        self.zero_tangent_lanes = if unseeded && allow { lanes } else { 0 };
         0
     }
 }
