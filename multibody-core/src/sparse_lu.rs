@@ -86,14 +86,15 @@ pub(crate) struct SparseLu {
     reach: Vec<usize>,
     /// Entries of the pattern given to `reset`.
     pattern_nnz: usize,
-    /// A second column order (AMD after the transversal) tried at the first
-    /// factorization; the cheaper of the two is kept.
+    /// Other column orders (AMD after the transversal, COLAMD of shuffled columns)
+    /// tried at the first factorization; the cheapest is kept.
     alternative_orders: Vec<Vec<usize>>,
     /// How many solves are expected per factorization: the first factorization keeps
     /// the order that minimizes refactorization multiply-adds plus this many times the
     /// entries of the factors (the multiply-adds of a solve). Default 0 (only the
     /// refactorization counts): a linear block solved inside a residual is solved once
-    /// per factorization, so its refactorization dominates.
+    /// per residual evaluation, and residual evaluations (each a factorization) far
+    /// outnumber the Jacobian passes that solve it once per lane.
     pub(crate) solves_per_factorization: usize,
     /// Number of factorizations with pivoting (for tests and logs).
     pub(crate) pivoting_factorizations: usize,

@@ -15,8 +15,13 @@
 //! values only needs a new specialization (milliseconds), not a new compilation.
 //!
 //! Values and derivatives are those of the original tape at the same parameter values,
-//! with one exception shared with the symbolic simplifier: `0 * x` is 0 even where `x`
-//! is not finite.
+//! up to rounding and with the exceptions the tape compiler's folding always makes (as
+//! the symbolic simplifier does): `0 * x` and `0 / x` are 0 even where `x` is not finite
+//! or zero, `x / k` becomes `(1/k) x`, and `0 - x` becomes `-x` (the sign of a zero
+//! result may differ). Eliminating linear-solve unknowns on constant pivots changes
+//! the rounding by the conditioning of those eliminations; pivots are chosen by
+//! threshold among the constants of their column, as compile-time pre-elimination
+//! chooses them.
 
 use crate::expr::Arena;
 

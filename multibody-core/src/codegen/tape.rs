@@ -244,7 +244,8 @@ pub struct Tape {
 
 /// Scratch memory for evaluating a [`Tape`]: registers, tangents and linear-solve
 /// factors. Reusable across calls (and across tapes; it grows when needed), so
-/// evaluation does not allocate.
+/// evaluation does not allocate once the workspace has served the tape. It remembers
+/// which tape's parameter prelude its registers hold, for which parameter values.
 #[derive(Clone, Debug, Default)]
 pub struct Workspace {
     pub(crate) regs: Vec<f64>,
@@ -277,7 +278,21 @@ impl PreludeCache {
     #[inline]
     fn holds(&self, tape: &Tape, inputs: &[f64]) -> bool {
         let (a, b) = tape.invariant_inputs;
-        self.tape == tape.id && self.inputs[..] == inputs[a..b]
+        // Bitwise: -0.0 and 0.0 may give different results (atan2, 1/p).
+        self.tape == tape.id
+            && self.inputs.len() == b - a
+            && self
+                .inputs
+                .iter()
+                .zip(&inputs[a..b])
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// Forgets what the registers hold (a tape without prelude overwrote them).
+    #[inline]
+    fn invalidate(&mut self) {
+        self.tape = 0;
+        self.zero_tangent_lanes = 0;
     }
 
     /// Records that the prelude registers now hold `tape`'s prelude at `inputs`.
@@ -297,6 +312,7 @@ impl PreludeCache {
     #[inline]
     pub(crate) fn value_pass(&mut self, tape: &Tape, inputs: &[f64]) -> usize {
         if tape.prelude_len == 0 {
+            self.invalidate();
             return 0;
         }
         if self.holds(tape, inputs) {
@@ -307,9 +323,10 @@ impl PreludeCache {
     }
 
     /// Before a forward pass of `tape` at `inputs` with `lanes` tangent lanes seeded by
-    /// `seeds`: the number of leading runs to skip. When the prelude is skipped, its
-    /// tangents in `tan` are zero (filled here when they may not be); `allow` false
-    /// forbids skipping (a hook must see every instruction).
+    /// `seeds`: the number of leading runs to skip. When the prelude is skipped (only
+    /// when no parameter slot is seeded), its tangents in `tan` are exactly zero
+    /// (filled here when they may not be); `allow` false forbids skipping (a hook must
+    /// see every instruction).
     pub(crate) fn forward_pass(
         &mut self,
         tape: &Tape,
@@ -320,6 +337,7 @@ impl PreludeCache {
         allow: bool,
     ) -> usize {
         if tape.prelude_len == 0 {
+            self.invalidate();
             return 0;
         }
         let (a, b) = tape.invariant_inputs;
@@ -332,9 +350,10 @@ impl PreludeCache {
             return tape.prelude_runs;
         }
         self.record(tape, inputs);
-        // The full pass computes the prelude tangents from the seeds; a hook that sees
-        // every instruction (`allow` false) may set some to nonzero values.
-        self.zero_tangent_lanes = if unseeded && allow { lanes } else { 0 };
+        // The full pass computes the prelude tangents from the seeds (and may leave
+        // NaN where a prelude value is not finite, or a hook may set them): the next
+        // skipping pass zeros them first.
+        self.zero_tangent_lanes = 0;
         0
     }
 }

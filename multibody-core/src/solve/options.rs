@@ -51,7 +51,8 @@ pub struct SolverOptions {
     /// parameter values (`CompiledDae::specialize`): terms that vanish for these values
     /// (a zero offset, a unit factor) are dropped, so tunable parameters cost about
     /// what folded ones do. Takes a few milliseconds per 10 000 instructions; results
-    /// agree with the unspecialized functions to rounding (default true).
+    /// agree with the unspecialized functions up to rounding and the folding rules of
+    /// `Tape::specialize` (default true).
     pub specialize_parameters: bool,
 }
 
