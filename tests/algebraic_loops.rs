@@ -6,6 +6,10 @@
 #[path = "support/models_1d.rs"]
 mod models_1d;
 
+#[path = "support/analytic.rs"]
+mod analytic;
+
+use analytic::tight;
 use multibody::electrical::Pin;
 use multibody::prelude::*;
 
@@ -39,11 +43,7 @@ fn resistor_bridge_is_a_linear_block_solved_inside() {
 
     let sol = DaeProblem::new(&ssys, &[("c.v", 0.0)], (0.0, 2.0))
         .unwrap()
-        .solve(&SolverOptions {
-            rtol: 1e-10,
-            atol: 1e-12,
-            ..SolverOptions::default()
-        })
+        .solve(&tight())
         .unwrap();
     for &t in &[0.0, 0.05, 0.3, 2.0] {
         let vc = sol.at("c.v", t).unwrap();

@@ -1,27 +1,13 @@
 //! 1-D models against analytic solutions, with their exact structure after
 //! simplification.
 
+#[path = "support/analytic.rs"]
+mod analytic;
 #[path = "support/models_1d.rs"]
 mod models_1d;
 
+use analytic::{damped, tight};
 use multibody::prelude::*;
-
-fn tight() -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        ..SolverOptions::default()
-    }
-}
-
-/// x(t) of `m x'' + d x' + c x = 0` from x0, v0 (underdamped).
-fn damped(m: f64, d: f64, c: f64, x0: f64, v0: f64, t: f64) -> f64 {
-    let w0 = (c / m).sqrt();
-    let zeta = d / (2.0 * (c * m).sqrt());
-    let wd = w0 * (1.0 - zeta * zeta).sqrt();
-    let a = zeta * w0;
-    (-a * t).exp() * (x0 * (wd * t).cos() + (v0 + a * x0) / wd * (wd * t).sin())
-}
 
 #[test]
 fn damped_mass_spring_matches_the_analytic_solution() {

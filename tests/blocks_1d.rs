@@ -4,7 +4,12 @@
 //! defines them (the block sources in `src/blocks`, `src/rotational`,
 //! `src/translational`), never a number read back from a run.
 
+#[path = "support/analytic.rs"]
+mod analytic;
+
 use std::f64::consts::PI;
+
+use analytic::tight;
 
 use multibody::blocks::{
     Add, Constant, ControllerType, Feedback, FirstOrder, Gain, Init, Integrator, LimPID, Limiter,
@@ -15,14 +20,6 @@ use multibody::rotational::{
     AngleSensor, ConstantTorque, Inertia, Speed, SpeedSensor, Torque, TorqueSensor,
 };
 use multibody::translational::{Force, Mass, PositionSensor};
-
-fn tight() -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        ..SolverOptions::default()
-    }
-}
 
 fn solve(model: &System, t1: f64) -> Solution {
     let ssys = structural_simplify(model).unwrap();

@@ -5,6 +5,10 @@
 #[allow(dead_code)]
 mod example;
 
+#[path = "support/analytic.rs"]
+mod analytic;
+
+use analytic::tight;
 use multibody::electrical::{ConstantVoltage, EMF, Ground, Inductor, Resistor};
 use multibody::prelude::*;
 use multibody::rotational::Fixed;
@@ -147,11 +151,7 @@ fn motor_current_first_rises_with_l_over_r_then_the_motor_answers() {
     let ssys = structural_simplify(&example::dc_motor()).unwrap();
     let sol = DaeProblem::new(&ssys, &[], (0.0, t_step + 0.02))
         .unwrap()
-        .solve(&SolverOptions {
-            rtol: 1e-10,
-            atol: 1e-12,
-            ..SolverOptions::default()
-        })
+        .solve(&tight())
         .unwrap();
     assert_eq!(sol.at("inductor.i", t_step - 1e-3).unwrap(), 0.0);
 

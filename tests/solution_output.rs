@@ -1,25 +1,19 @@
 //! What a solution gives back besides trajectories: the CSV export and the report of
 //! the start values that the initialization assumed.
 
+#[path = "support/analytic.rs"]
+mod analytic;
+
+use analytic::{damped, tight};
 use multibody::blocks::{Constant, FirstOrder, Init};
 use multibody::prelude::*;
 use multibody::translational::{Damper, Fixed, Mass, Spring};
 
-fn tight() -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        ..SolverOptions::default()
-    }
-}
-
-/// x(t) of `m x'' + d x' + c x = 0` from x0, v0 (underdamped, or undamped for d = 0).
-fn damped(m: f64, d: f64, c: f64, x0: f64, v0: f64, t: f64) -> f64 {
-    let w0 = (c / m).sqrt();
-    let zeta = d / (2.0 * (c * m).sqrt());
-    let wd = w0 * (1.0 - zeta * zeta).sqrt();
-    let a = zeta * w0;
-    (-a * t).exp() * (x0 * (wd * t).cos() + (v0 + a * x0) / wd * (wd * t).sin())
+/// The start values the initialization assumed, sorted by name.
+fn assumed_by_name(prob: &DaeProblem<'_>) -> Vec<(String, f64)> {
+    let mut assumed = prob.init_report().assumed.clone();
+    assumed.sort_by(|a, b| a.0.cmp(&b.0));
+    assumed
 }
 
 fn mass_spring(c: f64, d: f64, m: f64, s0: f64, v0: f64) -> System {
@@ -179,10 +173,8 @@ fn assumed_start_values_are_reported_by_name_and_value() {
     let ssys = structural_simplify(&model).unwrap();
     assert_eq!(ssys.states(), ["mass.s", "mass.v"]);
     let prob = DaeProblem::new(&ssys, &[], (0.0, 2.0)).unwrap();
-    let mut assumed = prob.init_report().assumed.clone();
-    assumed.sort_by(|a, b| a.0.cmp(&b.0));
     assert_eq!(
-        assumed,
+        assumed_by_name(&prob),
         [("mass.s".to_string(), s0), ("mass.v".to_string(), v0)]
     );
     assert_eq!(prob.initial_unknowns(), [s0, v0]);
@@ -214,10 +206,8 @@ fn start_values_of_non_states_are_assumed_before_states_without_one() {
     let ssys = structural_simplify(&mass_spring(c, d, m, s0, v0)).unwrap();
     assert_eq!(ssys.states(), ["damper.s_rel", "damper.v_rel"]);
     let prob = DaeProblem::new(&ssys, &[], (0.0, 2.0)).unwrap();
-    let mut assumed = prob.init_report().assumed.clone();
-    assumed.sort_by(|a, b| a.0.cmp(&b.0));
     assert_eq!(
-        assumed,
+        assumed_by_name(&prob),
         [("mass.s".to_string(), s0), ("mass.v".to_string(), v0)]
     );
     // The states start from them: s_rel = s - 0 (fixed at 0, L = 0), v_rel = v.

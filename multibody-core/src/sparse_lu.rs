@@ -56,26 +56,23 @@ pub(crate) struct SparseLu {
     pivot_row: Vec<usize>,
     /// Step of each original row (`usize::MAX` while not pivotal).
     row_step: Vec<usize>,
-    /// `L` by step: original rows and multipliers (unit diagonal not stored).
+    /// `L` by step: original rows and multipliers (unit diagonal not stored). Indices
+    /// are 32-bit: refactorization and solves are bound by memory traffic.
     l_ptr: Vec<usize>,
-    l_row: Vec<usize>,
+    l_row: Vec<u32>,
     l_val: Vec<f64>,
     /// `U` by step, strictly upper part: earlier steps in topological order, values.
     u_ptr: Vec<usize>,
-    u_step: Vec<usize>,
+    u_step: Vec<u32>,
     /// Pivot row of each `u_step` entry (saves an indirection when refactoring).
-    u_row: Vec<usize>,
+    u_row: Vec<u32>,
     u_val: Vec<f64>,
     /// Reciprocals of the pivots (the solve multiplies instead of dividing: a division
     /// on the critical path of the back substitution cost a quarter of its time).
     u_inv_diag: Vec<f64>,
-    /// The replay program, compact (32-bit indices; refactorization and solves are
-    /// bound by memory traffic): per `U` entry its pivot row and the range of the `L`
-    /// column of its step; `L`'s rows; `U`'s steps.
-    replay_u_row: Vec<u32>,
-    replay_u_l: Vec<(u32, u32)>,
-    replay_l_row: Vec<u32>,
-    replay_u_step: Vec<u32>,
+    /// Per `U` entry, the range of the `L` column of its step (saves two indirections
+    /// per entry when refactoring).
+    u_l_range: Vec<(u32, u32)>,
     /// Whether the factors hold a complete factorization whose patterns can be replayed.
     factored: bool,
     /// Dense work vector by original row (kept zero between columns).
@@ -190,6 +187,10 @@ impl SparseLu {
         value: impl Fn(usize) -> f64,
     ) -> Result<(), LuError> {
         let n = self.n;
+        assert!(
+            u32::try_from(n).is_ok(),
+            "sparse LU of order {n}: rows and steps are stored in 32 bits"
+        );
         self.pivot_row.clear();
         self.pivot_row.resize(n, usize::MAX);
         self.row_step.clear();
@@ -231,12 +232,12 @@ impl SparseLu {
                     continue;
                 }
                 let x = self.work[r];
-                self.u_step.push(s);
-                self.u_row.push(r);
+                self.u_step.push(s as u32);
+                self.u_row.push(r as u32);
                 self.u_val.push(x);
                 if x != 0.0 {
                     for q in self.l_ptr[s]..self.l_ptr[s + 1] {
-                        self.work[self.l_row[q]] -= self.l_val[q] * x;
+                        self.work[self.l_row[q] as usize] -= self.l_val[q] * x;
                     }
                 }
             }
@@ -273,7 +274,7 @@ impl SparseLu {
             self.u_inv_diag[k] = 1.0 / pivot;
             for &r in &self.reach {
                 if self.row_step[r] == usize::MAX {
-                    self.l_row.push(r);
+                    self.l_row.push(r as u32);
                     self.l_val.push(self.work[r] / pivot);
                 }
                 self.work[r] = 0.0;
@@ -281,28 +282,13 @@ impl SparseLu {
             self.l_ptr.push(self.l_row.len());
             self.u_ptr.push(self.u_step.len());
         }
-        self.build_replay();
-        Ok(())
-    }
-
-    /// Records the patterns of a finished factorization as the replay program.
-    fn build_replay(&mut self) {
         let small = |v: usize| u32::try_from(v).expect("sparse LU larger than 2^32 entries");
-        self.replay_u_row.clear();
-        self.replay_u_row
-            .extend(self.u_row.iter().map(|&r| small(r)));
-        self.replay_u_step.clear();
-        self.replay_u_step
-            .extend(self.u_step.iter().map(|&s| small(s)));
-        self.replay_u_l.clear();
-        self.replay_u_l.extend(
-            self.u_step
-                .iter()
-                .map(|&s| (small(self.l_ptr[s]), small(self.l_ptr[s + 1]))),
-        );
-        self.replay_l_row.clear();
-        self.replay_l_row
-            .extend(self.l_row.iter().map(|&r| small(r)));
+        self.u_l_range.clear();
+        self.u_l_range.extend(self.u_step.iter().map(|&s| {
+            let s = s as usize;
+            (small(self.l_ptr[s]), small(self.l_ptr[s + 1]))
+        }));
+        Ok(())
     }
 
     /// Depth-first search from row `r` through `L`'s columns, appending rows in
@@ -317,7 +303,7 @@ impl SparseLu {
             if s != usize::MAX {
                 let (start, end) = (self.l_ptr[s], self.l_ptr[s + 1]);
                 while start + *next < end {
-                    let child = self.l_row[start + *next];
+                    let child = self.l_row[start + *next] as usize;
                     *next += 1;
                     if self.mark[child] != k {
                         pushed = Some(child);
@@ -357,18 +343,18 @@ impl SparseLu {
             u_val,
             u_inv_diag,
             work,
-            replay_u_row,
-            replay_u_l,
-            replay_l_row,
+            u_row,
+            u_l_range,
+            l_row,
             ..
         } = self;
         let (col_order, pivot_row) = (&col_order[..n], &pivot_row[..n]);
         let (l_ptr, u_ptr, u_row, u_l, l_row) = (
             &l_ptr[..],
             &u_ptr[..],
-            &replay_u_row[..],
-            &replay_u_l[..],
-            &replay_l_row[..],
+            &u_row[..],
+            &u_l_range[..],
+            &l_row[..],
         );
         let (l_val, u_val, u_inv_diag, work) = (
             &mut l_val[..],
@@ -426,7 +412,7 @@ impl SparseLu {
         let (pivot_row, l_ptr, l_row, l_val) = (
             &self.pivot_row[..n],
             &self.l_ptr[..],
-            &self.replay_l_row[..],
+            &self.l_row[..],
             &self.l_val[..],
         );
         // Forward: L z = P b, in original row indexing.
@@ -444,7 +430,7 @@ impl SparseLu {
         let z = &mut scratch[..n];
         let (u_ptr, u_step, u_val, u_inv_diag) = (
             &self.u_ptr[..],
-            &self.replay_u_step[..],
+            &self.u_step[..],
             &self.u_val[..],
             &self.u_inv_diag[..n],
         );
@@ -483,7 +469,7 @@ impl SparseLu {
             .map(|k| {
                 (self.u_ptr[k]..self.u_ptr[k + 1])
                     .map(|q| {
-                        let s = self.u_step[q];
+                        let s = self.u_step[q] as usize;
                         self.l_ptr[s + 1] - self.l_ptr[s]
                     })
                     .sum::<usize>()

@@ -77,7 +77,7 @@ pub struct TapeBuilder<'a> {
     arena: &'a Arena,
     names: Option<&'a dyn Fn(Id) -> String>,
     n_inputs: usize,
-    pub(super) ops: Vec<Op>,
+    ops: Vec<Op>,
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
     /// Registers of the emitted instructions by the instruction's hash (value
@@ -85,7 +85,7 @@ pub struct TapeBuilder<'a> {
     numbering: HashTable<u32>,
     bound: IdMap,
     memo: IdMap,
-    pub(super) ls: Vec<LsInfo>,
+    ls: Vec<LsInfo>,
     pub(super) outputs: Vec<u32>,
     stack: Vec<(Id, bool)>,
     invariant_inputs: (usize, usize),
@@ -235,6 +235,25 @@ impl<'a> TapeBuilder<'a> {
             .map(|&t| self.describe(t))
             .collect::<Vec<_>>()
             .join(", ");
+        let base = self.push_linear_solve(ra, sparse, rc, names);
+        for (i, &t) in targets.iter().enumerate() {
+            self.bind(t, base + i as u32);
+        }
+        Ok(())
+    }
+
+    /// Appends the linear solve `A x + c = 0` over registers already emitted (`a`
+    /// row-major k*k when dense, one per entry of `sparse` in CSC order; `c` one per
+    /// row) with its parts; returns the register of its first unknown (the others
+    /// follow). `names` names the unknowns for error messages.
+    pub(super) fn push_linear_solve(
+        &mut self,
+        a: Vec<u32>,
+        sparse: Option<std::sync::Arc<SparsePattern>>,
+        c: Vec<u32>,
+        names: String,
+    ) -> u32 {
+        let k = c.len();
         let base = self.ops.len() as u32;
         self.ops.push(Op::LinearSolve(self.ls.len() as u32));
         for _ in 1..k {
@@ -242,17 +261,14 @@ impl<'a> TapeBuilder<'a> {
         }
         self.ls.push(LsInfo {
             k,
-            a: ra,
+            a,
             sparse,
-            c: rc,
+            c,
             lu_off: 0,
             piv_off: 0,
             names,
         });
-        for (i, &t) in targets.iter().enumerate() {
-            self.bind(t, base + i as u32);
-        }
-        Ok(())
+        base
     }
 
     /// Adds the output `e`; returns its index.

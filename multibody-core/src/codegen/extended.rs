@@ -52,8 +52,9 @@ pub struct ExtendedJacobian {
     cut_of: Vec<u32>,
     n_cuts: usize,
     coloring: Coloring,
-    /// Whether a cut lies in the tape's prelude (which then cannot be skipped).
-    prelude_has_cut: bool,
+    /// Whether forward passes may skip the tape's prelude: no cut lies in it and the
+    /// seeded slots (`u`, `u'`) are not invariant inputs.
+    prelude_skippable: bool,
 }
 
 /// Scratch memory for [`ExtendedJacobian::eval`].
@@ -275,8 +276,13 @@ impl ExtendedJacobian {
             }
         }
         let dim = n + n_cuts;
-        // A cut in the prelude must pass through the forward hook: no skipping then.
-        let prelude_has_cut = is_cut[..tape.prelude_len].iter().any(|&c| c);
+        // The prelude may be skipped unless a cut lies in it (cuts must pass through the
+        // forward hook) or the seeded slots overlap the invariant inputs.
+        let (lo, hi) = tape.invariant_inputs;
+        let seeded_outside = |start: usize| start + n <= lo || start >= hi;
+        let prelude_skippable = !is_cut[..tape.prelude_len].iter().any(|&c| c)
+            && seeded_outside(u_offset)
+            && seeded_outside(yp_offset);
         // Dependencies with the final cuts (a cut register reads as its own column).
         let mut deps: Vec<Vec<u32>> = vec![Vec::new(); nregs];
         let mut rows: Vec<Vec<usize>> = vec![Vec::new(); dim];
@@ -340,7 +346,7 @@ impl ExtendedJacobian {
             cut_of,
             n_cuts,
             coloring,
-            prelude_has_cut,
+            prelude_skippable,
         }
     }
 
@@ -489,7 +495,7 @@ impl ExtendedJacobian {
         let regs = &mut regs[..nregs];
         let tan = &mut tan[..nregs * w];
         let cut_of = &self.cut_of[..];
-        let skip = prelude.forward_pass(tape, inputs, seeds, w, tan, !self.prelude_has_cut);
+        let skip = prelude.forward_pass(tape, inputs, w, tan, self.prelude_skippable);
         // Borrowed by both hooks; they never run at the same time.
         let cut_rows = std::cell::RefCell::new(cut_rows);
         forward_core(

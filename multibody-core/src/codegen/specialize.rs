@@ -113,19 +113,6 @@ fn emit_linear_solve(b: &mut TapeBuilder<'_>, info: &LsInfo, map: &[u32]) -> Vec
             return emit_reduced_sparse_solve(b, k, &pattern, &kept, &c, &info.names);
         }
     }
-    let base = b.ops.len() as u32;
-    b.ops.push(Op::LinearSolve(b.ls.len() as u32));
-    for _ in 1..k {
-        b.ops.push(Op::LsPart);
-    }
-    b.ls.push(LsInfo {
-        k,
-        a,
-        sparse: info.sparse.clone(),
-        c,
-        lu_off: 0,
-        piv_off: 0,
-        names: info.names.clone(),
-    });
+    let base = b.push_linear_solve(a, info.sparse.clone(), c, info.names.clone());
     (0..k as u32).map(|j| base + j).collect()
 }

@@ -19,7 +19,7 @@ use std::cmp::Reverse;
 use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
 
 use super::compile::TapeBuilder;
-use super::tape::{LsInfo, Op, SparsePattern};
+use super::tape::{Op, SparsePattern};
 
 /// Entries an elimination may add (see the module documentation for why none).
 const MAX_FILL: usize = 0;
@@ -131,22 +131,14 @@ pub(super) fn emit_reduced_sparse_solve(
             }
             col_ptr[jj + 1] = row_idx.len();
         }
-        let base = b.ops.len() as u32;
-        b.ops.push(Op::LinearSolve(b.ls.len() as u32));
-        for _ in 1..kk {
-            b.ops.push(Op::LsPart);
-        }
-        b.ls.push(LsInfo {
-            k: kk,
-            a: regs,
-            sparse: Some(std::sync::Arc::new(SparsePattern::new(
-                kk, col_ptr, row_idx,
-            ))),
-            c: rows.iter().map(|&i| block.c[i]).collect(),
-            lu_off: 0,
-            piv_off: 0,
-            names: names.to_string(),
-        });
+        let pattern = SparsePattern::new(kk, col_ptr, row_idx);
+        let c = rows.iter().map(|&i| block.c[i]).collect();
+        let base = b.push_linear_solve(
+            regs,
+            Some(std::sync::Arc::new(pattern)),
+            c,
+            names.to_string(),
+        );
         for (jj, &j) in left.iter().enumerate() {
             x[j] = base + jj as u32;
         }

@@ -322,27 +322,24 @@ impl PreludeCache {
         0
     }
 
-    /// Before a forward pass of `tape` at `inputs` with `lanes` tangent lanes seeded by
-    /// `seeds`: the number of leading runs to skip. When the prelude is skipped (only
-    /// when no parameter slot is seeded), its tangents in `tan` are exactly zero
-    /// (filled here when they may not be); `allow` false forbids skipping (a hook must
-    /// see every instruction).
+    /// Before a forward pass of `tape` at `inputs` with `lanes` tangent lanes: the
+    /// number of leading runs to skip. `may_skip` says that no parameter slot is
+    /// seeded and no hook needs to see the prelude's instructions. When the prelude is
+    /// skipped, its tangents in `tan` are exactly zero (filled here when they may not
+    /// be).
     pub(crate) fn forward_pass(
         &mut self,
         tape: &Tape,
         inputs: &[f64],
-        seeds: &[f64],
         lanes: usize,
         tan: &mut [f64],
-        allow: bool,
+        may_skip: bool,
     ) -> usize {
         if tape.prelude_len == 0 {
             self.invalidate();
             return 0;
         }
-        let (a, b) = tape.invariant_inputs;
-        let unseeded = seeds[a * lanes..b * lanes].iter().all(|&s| s == 0.0);
-        if allow && unseeded && self.holds(tape, inputs) {
+        if may_skip && self.holds(tape, inputs) {
             if self.zero_tangent_lanes != lanes {
                 tan[..tape.prelude_len * lanes].fill(0.0);
                 self.zero_tangent_lanes = lanes;
