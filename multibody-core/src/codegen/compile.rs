@@ -636,8 +636,8 @@ impl<'a> TapeBuilder<'a> {
                 }
             };
             match node {
-                Node::Sum(ts, _) => ts.iter().rev().for_each(|&(_, t)| push(t)),
-                Node::Prod(fs) => fs.iter().rev().for_each(|&(b, _)| push(b)),
+                Node::Sum(ts, _) => arena.terms(*ts).iter().rev().for_each(|&(_, t)| push(t)),
+                Node::Prod(fs) => arena.factors(*fs).iter().rev().for_each(|&(b, _)| push(b)),
                 Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => {
                     push(*b);
                     push(*a);
@@ -667,7 +667,7 @@ impl<'a> TapeBuilder<'a> {
                 } else {
                     None
                 };
-                for &(kb, t) in ts.iter() {
+                for &(kb, t) in self.arena.terms(*ts) {
                     let k = f64::from_bits(kb);
                     let rt = self.reg(t);
                     let op = match acc {
@@ -692,7 +692,7 @@ impl<'a> TapeBuilder<'a> {
                 let mut num: Option<u32> = None;
                 let mut den: Option<u32> = None;
                 let mut single_den: Option<(u32, i32)> = None;
-                for &(b, e) in fs.iter() {
+                for &(b, e) in self.arena.factors(*fs) {
                     let rb = self.reg(b);
                     let mag = e.unsigned_abs() as i32;
                     let p = if mag == 1 {

@@ -4,7 +4,7 @@ use std::hash::BuildHasher;
 
 use hashbrown::HashTable;
 
-use super::{Cmp, Func1, Func2, Id, Node};
+use super::{Cmp, Func1, Func2, Id, Node, Operands};
 
 /// Hash-consed expression storage. Every constructor simplifies: constants fold,
 /// neutral elements vanish, sums and products are flattened and ordered, and like terms
@@ -12,6 +12,10 @@ use super::{Cmp, Func1, Func2, Id, Node};
 #[derive(Clone, Debug)]
 pub struct Arena {
     nodes: Vec<Node>,
+    /// The terms of every sum node, each node's a contiguous range.
+    term_pool: Vec<(u64, Id)>,
+    /// The factors of every product node, each node's a contiguous range.
+    factor_pool: Vec<(Id, i32)>,
     /// Hash of each node (for the table's growth).
     hashes: Vec<u64>,
     /// Node ids by hash: each node is stored once, in `nodes`.
@@ -23,8 +27,14 @@ pub struct Arena {
     param_leaf: Vec<u32>,
 }
 
-fn hash_node(n: &Node) -> u64 {
-    crate::hash::FastBuild::default().hash_one(n)
+/// Hash of a node by content (the operands of sums and products, not their ranges).
+fn hash_node(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> u64 {
+    let b = crate::hash::FastBuild::default();
+    match *n {
+        Node::Sum(ts, c) => b.hash_one((0u8, &terms[ts.range()], c)),
+        Node::Prod(fs) => b.hash_one((1u8, &factors[fs.range()])),
+        _ => b.hash_one(n),
+    }
 }
 
 impl Default for Arena {
@@ -56,6 +66,8 @@ impl Arena {
     pub fn new() -> Self {
         let mut a = Arena {
             nodes: Vec::new(),
+            term_pool: Vec::new(),
+            factor_pool: Vec::new(),
             hashes: Vec::new(),
             table: HashTable::new(),
             var_leaf: Vec::new(),
@@ -69,6 +81,22 @@ impl Arena {
     /// The node behind `id`.
     pub fn node(&self, id: Id) -> &Node {
         &self.nodes[id.index()]
+    }
+
+    /// The terms `(coefficient bits, term)` of a sum node.
+    pub fn terms(&self, ts: Operands) -> &[(u64, Id)] {
+        &self.term_pool[ts.range()]
+    }
+
+    /// The factors `(base, exponent)` of a product node.
+    pub fn factors(&self, fs: Operands) -> &[(Id, i32)] {
+        &self.factor_pool[fs.range()]
+    }
+
+    /// Entries of the term and factor pools (tests check that equal nodes share them).
+    #[cfg(test)]
+    pub(crate) fn pool_lens(&self) -> (usize, usize) {
+        (self.term_pool.len(), self.factor_pool.len())
     }
 
     /// Number of distinct nodes.
@@ -110,10 +138,51 @@ impl Arena {
         grow_to(&mut self.var_leaf, i, [u32::MAX; 2])
     }
 
+    /// A sum node with these terms (already sorted and merged).
+    fn intern_sum(&mut self, terms: &[(u64, Id)], c: u64) -> Id {
+        let start = self.term_pool.len();
+        self.term_pool.extend_from_slice(terms);
+        let ts = Operands {
+            start: start as u32,
+            len: terms.len() as u32,
+        };
+        let id = self.intern_hashed(Node::Sum(ts, c));
+        if self.nodes[id.index()] != Node::Sum(ts, c) {
+            // An equal sum existed: its terms are stored already.
+            self.term_pool.truncate(start);
+        }
+        id
+    }
+
+    /// A product node with these factors (already sorted and merged).
+    fn intern_product(&mut self, factors: &[(Id, i32)]) -> Id {
+        let start = self.factor_pool.len();
+        self.factor_pool.extend_from_slice(factors);
+        let fs = Operands {
+            start: start as u32,
+            len: factors.len() as u32,
+        };
+        let id = self.intern_hashed(Node::Prod(fs));
+        if self.nodes[id.index()] != Node::Prod(fs) {
+            self.factor_pool.truncate(start);
+        }
+        id
+    }
+
     fn intern_hashed(&mut self, n: Node) -> Id {
-        let h = hash_node(&n);
+        let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
+        let h = hash_node(&n, terms, factors);
         let nodes = &self.nodes;
-        if let Some(&id) = self.table.find(h, |&i| nodes[i as usize] == n) {
+        // Equal by content: the operands of a stored sum or product are compared, not
+        // its range in the pool.
+        let same = |&i: &u32| match (nodes[i as usize], n) {
+            (Node::Sum(a, ca), Node::Sum(b, cb)) => {
+                ca == cb && terms[a.range()] == terms[b.range()]
+            }
+            (Node::Prod(a), Node::Prod(b)) => factors[a.range()] == factors[b.range()],
+            (stored, n) => stored == n,
+        };
+        if let Some(&id) = self.table.find(h, same) {
             return Id(id);
         }
         let id = self.nodes.len() as u32;
@@ -198,7 +267,7 @@ impl Arena {
                 Node::Const(b) => c0 += k * f64::from_bits(*b),
                 Node::Sum(ts, c) => {
                     c0 += k * f64::from_bits(*c);
-                    for &(kk, tt) in ts.iter() {
+                    for &(kk, tt) in self.terms(*ts) {
                         acc.push((tt, k * f64::from_bits(kk)));
                     }
                 }
@@ -226,7 +295,7 @@ impl Arena {
             return merged[0].1;
         }
         let c0 = if c0 == 0.0 { 0.0 } else { c0 };
-        self.intern(Node::Sum(merged.into_boxed_slice(), c0.to_bits()))
+        self.intern_sum(&merged, c0.to_bits())
     }
 
     /// `a + b`.
@@ -260,16 +329,16 @@ impl Arena {
         match self.node(x) {
             Node::Const(b) => f64::from_bits(*b),
             Node::Sum(ts, c) if ts.len() == 1 && f64::from_bits(*c) == 0.0 => {
-                let (k, t) = ts[0];
+                let (k, t) = self.terms(*ts)[0];
                 let k = f64::from_bits(k);
                 match self.node(t) {
-                    Node::Prod(fs) => out.extend(fs.iter().copied()),
+                    Node::Prod(fs) => out.extend_from_slice(self.factors(*fs)),
                     _ => out.push((t, 1)),
                 }
                 k
             }
             Node::Prod(fs) => {
-                out.extend(fs.iter().copied());
+                out.extend_from_slice(self.factors(*fs));
                 1.0
             }
             _ => {
@@ -296,7 +365,7 @@ impl Arena {
         let core = match merged.len() {
             0 => return self.constant(coef),
             1 if merged[0].1 == 1 => merged[0].0,
-            _ => self.intern(Node::Prod(merged.into_boxed_slice())),
+            _ => self.intern_product(&merged),
         };
         if coef == 1.0 {
             core
@@ -384,11 +453,9 @@ impl Arena {
         if let Some(c) = self.as_const(a) {
             return self.constant(f.apply(c));
         }
-        if let (Func1::Sqrt, Node::Prod(fs)) = (f, self.node(a))
-            && fs.len() == 1
-            && fs[0].1 == 2
+        if let (Func1::Sqrt, Node::Prod(fs)) = (f, *self.node(a))
+            && let [(base, 2)] = *self.factors(fs)
         {
-            let base = fs[0].0;
             return self.f1(Func1::Abs, base);
         }
         self.intern(Node::F1(f, a))
@@ -456,8 +523,8 @@ impl Arena {
         match self.node(id) {
             Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => {}
             Node::Der(x) | Node::F1(_, x) => out.push(*x),
-            Node::Sum(ts, _) => out.extend(ts.iter().map(|&(_, t)| t)),
-            Node::Prod(fs) => out.extend(fs.iter().map(|&(b, _)| b)),
+            Node::Sum(ts, _) => out.extend(self.terms(*ts).iter().map(|&(_, t)| t)),
+            Node::Prod(fs) => out.extend(self.factors(*fs).iter().map(|&(b, _)| b)),
             Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => {
                 out.push(*a);
                 out.push(*b);

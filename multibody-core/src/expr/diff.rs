@@ -37,7 +37,7 @@ impl Arena {
         if let Some(&d) = memo.get(&e) {
             return d;
         }
-        let node = self.node(e).clone();
+        let node = *self.node(e);
         let d = match node {
             Node::Const(_) => self.zero(),
             Node::Var(_) | Node::Der(_) | Node::Param(_) | Node::Time => match rule {
@@ -55,14 +55,17 @@ impl Arena {
                 },
             },
             Node::Sum(ts, _) => {
+                // Copied: differentiating grows the pools.
+                let ts = self.terms(ts).to_vec();
                 let mut terms = Vec::with_capacity(ts.len());
-                for &(k, t) in ts.iter() {
+                for &(k, t) in &ts {
                     let dt = self.diff_rec(t, rule, memo);
                     terms.push((f64::from_bits(k), dt));
                 }
                 self.linear_combination(0.0, &terms)
             }
             Node::Prod(fs) => {
+                let fs = self.factors(fs).to_vec();
                 let mut terms = Vec::new();
                 for i in 0..fs.len() {
                     let (b, n) = fs[i];

@@ -58,7 +58,7 @@ impl Arena {
             Node::Der(x) => (4, format!("der({})", self.sub_text(*x, names, 0))),
             Node::Sum(ts, c) => {
                 let mut out = String::new();
-                for (i, &(k, t)) in ts.iter().enumerate() {
+                for (i, &(k, t)) in self.terms(*ts).iter().enumerate() {
                     let k = f64::from_bits(k);
                     let body = self.sub_text(t, names, 2);
                     let mag = k.abs();
@@ -91,12 +91,14 @@ impl Arena {
                         format!("{}^{}", self.sub_text(b, names, 4), n)
                     }
                 };
-                let num: Vec<String> = fs
+                let num: Vec<String> = self
+                    .factors(*fs)
                     .iter()
                     .filter(|f| f.1 > 0)
                     .map(|&(b, n)| fmt_factor(b, n))
                     .collect();
-                let den: Vec<String> = fs
+                let den: Vec<String> = self
+                    .factors(*fs)
                     .iter()
                     .filter(|f| f.1 < 0)
                     .map(|&(b, n)| fmt_factor(b, -n))

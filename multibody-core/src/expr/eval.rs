@@ -26,14 +26,14 @@ impl Arena {
             n @ (Node::Var(_) | Node::Param(_) | Node::Time | Node::Der(_)) => leaf(n)?,
             Node::Sum(ts, c) => {
                 let mut s = f64::from_bits(*c);
-                for &(k, t) in ts.iter() {
+                for &(k, t) in self.terms(*ts).iter() {
                     s += f64::from_bits(k) * self.eval_rec(t, leaf, memo)?;
                 }
                 s
             }
             Node::Prod(fs) => {
                 let mut p = 1.0;
-                for &(b, n) in fs.iter() {
+                for &(b, n) in self.factors(*fs).iter() {
                     p *= self.eval_rec(b, leaf, memo)?.powi(n);
                 }
                 p

@@ -133,7 +133,7 @@ impl Expr {
 
     /// The symbol id when this is a variable or parameter leaf.
     pub(crate) fn symbol(self) -> Option<u32> {
-        match with(|a| a.node(self.0).clone()) {
+        match with(|a| *a.node(self.0)) {
             Node::Var(s) | Node::Param(s) => Some(s),
             _ => None,
         }
@@ -141,7 +141,7 @@ impl Expr {
 
     /// Whether this is a variable leaf.
     pub fn is_var(self) -> bool {
-        matches!(with(|a| a.node(self.0).clone()), Node::Var(_))
+        matches!(with(|a| *a.node(self.0)), Node::Var(_))
     }
 
     /// Time derivative `der(self)`.

@@ -195,8 +195,35 @@ impl Cmp {
     }
 }
 
+/// The operands of a sum or product node: a range of its arena's operand pool (read
+/// them with [`Arena::terms`] or [`Arena::factors`]). Nodes keep no heap memory of their
+/// own, so an arena is a few flat vectors: cloned by copying, hash-consed without
+/// chasing pointers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Operands {
+    start: u32,
+    len: u32,
+}
+
+impl Operands {
+    /// Number of operands.
+    pub fn len(self) -> usize {
+        self.len as usize
+    }
+
+    /// Whether there is no operand (never, for a node of an arena).
+    pub fn is_empty(self) -> bool {
+        self.len == 0
+    }
+
+    fn range(self) -> std::ops::Range<usize> {
+        self.start as usize..(self.start + self.len) as usize
+    }
+}
+
 /// One expression node. Constants are stored by their bit pattern so nodes hash exactly.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+/// Nodes are plain values (`Copy`); the operands of sums and products live in the arena.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Node {
     /// A number (`f64::to_bits`).
     Const(u64),
@@ -208,13 +235,14 @@ pub enum Node {
     Time,
     /// Time derivative of a leaf (a `Var`, or a `Der` for higher derivatives).
     Der(Id),
-    /// `constant + sum(coefficient * term)`: terms sorted by id, none a constant or a sum,
-    /// no zero coefficient, and never a single term with coefficient 1 and constant 0.
-    Sum(Box<[(u64, Id)]>, u64),
-    /// `product(factor ^ exponent)` with integer exponents: factors sorted by id, none a
-    /// constant, sum with a single term, or product; at least two factors or one with an
-    /// exponent other than 1.
-    Prod(Box<[(Id, i32)]>),
+    /// `constant + sum(coefficient * term)`: terms `(coefficient bits, term)` (see
+    /// [`Arena::terms`]) sorted by id, none a constant or a sum, no zero coefficient, and
+    /// never a single term with coefficient 1 and constant 0.
+    Sum(Operands, u64),
+    /// `product(factor ^ exponent)` with integer exponents: factors `(base, exponent)`
+    /// (see [`Arena::factors`]) sorted by id, none a constant, sum with a single term, or
+    /// product; at least two factors or one with an exponent other than 1.
+    Prod(Operands),
     /// `base ^ exponent` for a non-integer or symbolic exponent.
     Pow(Id, Id),
     /// A unary function.

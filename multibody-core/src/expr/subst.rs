@@ -60,22 +60,20 @@ impl Arena {
         if let Some(&r) = memo.get(&e) {
             return r;
         }
-        // Children are read by position, so the node itself is never cloned.
+        // Children are read by position: nothing is copied.
         let r = match *self.node(e) {
             Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => e,
             Node::Der(x) => {
                 let nx = self.subst_rec(x, map, memo, opaque);
                 if nx == x { e } else { self.der(nx) }
             }
-            Node::Sum(ref ts, c) => {
+            Node::Sum(ts, c) => {
                 let len = ts.len();
                 let mut terms = Vec::with_capacity(len);
                 let mut changed = false;
                 for i in 0..len {
-                    let Node::Sum(ts, _) = self.node(e) else {
-                        unreachable!("a sum node")
-                    };
-                    let (k, t) = ts[i];
+                    // The range stays valid while the pools grow.
+                    let (k, t) = self.terms(ts)[i];
                     let nt = self.subst_rec(t, map, memo, opaque);
                     changed |= nt != t;
                     terms.push((f64::from_bits(k), nt));
@@ -86,15 +84,12 @@ impl Arena {
                     e
                 }
             }
-            Node::Prod(ref fs) => {
+            Node::Prod(fs) => {
                 let len = fs.len();
                 let mut factors = Vec::with_capacity(len);
                 let mut changed = false;
                 for i in 0..len {
-                    let Node::Prod(fs) = self.node(e) else {
-                        unreachable!("a product node")
-                    };
-                    let (b, n) = fs[i];
+                    let (b, n) = self.factors(fs)[i];
                     let nb = self.subst_rec(b, map, memo, opaque);
                     changed |= nb != b;
                     factors.push((nb, n));
@@ -235,14 +230,16 @@ impl Arena {
                 self.der(nx)
             }
             Node::Sum(ts, c) => {
-                let terms: Vec<(f64, Id)> = ts
+                let terms: Vec<(f64, Id)> = src
+                    .terms(*ts)
                     .iter()
                     .map(|&(k, t)| (f64::from_bits(k), self.import(src, t, leaf, memo)))
                     .collect();
                 self.linear_combination(f64::from_bits(*c), &terms)
             }
             Node::Prod(fs) => {
-                let ps: Vec<Id> = fs
+                let ps: Vec<Id> = src
+                    .factors(*fs)
                     .iter()
                     .map(|&(b, n)| {
                         let nb = self.import(src, b, leaf, memo);

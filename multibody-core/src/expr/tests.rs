@@ -89,3 +89,39 @@ fn substitution_re_simplifies() {
     let r = e.substitute(&[(x, Expr::constant(2.0) * y)]);
     assert_eq!(r, 2.0 * y.powi(2) + 2.0 * y.der());
 }
+
+#[test]
+fn equal_sums_and_products_are_one_node_with_operands_stored_once() {
+    let mut a = Arena::new();
+    let (x, y, z) = (a.var(0), a.var(1), a.var(2));
+    let s = a.linear_combination(1.5, &[(2.0, x), (-1.0, y)]);
+    let p = a.product(&[x, y, z]);
+    let pools = a.pool_lens();
+    let nodes = a.len();
+    // The same operands in another order: the same nodes, and nothing new stored.
+    assert_eq!(a.linear_combination(1.5, &[(-1.0, y), (2.0, x)]), s);
+    assert_eq!(a.product(&[z, x, y]), p);
+    assert_eq!((a.len(), a.pool_lens()), (nodes, pools));
+    // Different operands are different nodes, read back from the pools.
+    let s2 = a.linear_combination(1.5, &[(2.0, x), (1.0, y)]);
+    assert_ne!(s2, s);
+    let Node::Sum(ts, c) = *a.node(s2) else {
+        panic!("a sum")
+    };
+    assert_eq!(f64::from_bits(c), 1.5);
+    let terms: Vec<(f64, Id)> = a
+        .terms(ts)
+        .iter()
+        .map(|&(k, t)| (f64::from_bits(k), t))
+        .collect();
+    assert_eq!(terms, vec![(2.0, x), (1.0, y)]);
+    let Node::Prod(fs) = *a.node(p) else {
+        panic!("a product")
+    };
+    assert_eq!(a.factors(fs), &[(x, 1), (y, 1), (z, 1)]);
+    // A clone is independent: what it adds is not in the original.
+    let mut b = a.clone();
+    b.product(&[x, x, y]);
+    assert_eq!(a.len(), nodes + 1);
+    assert_eq!(b.len(), nodes + 2);
+}

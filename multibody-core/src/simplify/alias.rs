@@ -49,10 +49,13 @@ fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
         Node::Var(i) => return Some(Pattern::Constant(*i, arena.zero())),
         Node::Sum(ts, c) => {
             let c = f64::from_bits(*c);
-            let mut vars = ts.iter().filter_map(|&(k, t)| match arena.node(t) {
-                Node::Var(i) => Some((f64::from_bits(k), *i)),
-                _ => None,
-            });
+            let mut vars = arena
+                .terms(*ts)
+                .iter()
+                .filter_map(|&(k, t)| match arena.node(t) {
+                    Node::Var(i) => Some((f64::from_bits(k), *i)),
+                    _ => None,
+                });
             let first = vars.next();
             let second = vars.next();
             let more = vars.next().is_some();
@@ -75,7 +78,8 @@ fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
     // `k a + rest = 0` with `rest` of parameters only.
     let x = arena.var(a);
     if let Node::Sum(ts, _) = arena.node(r)
-        && !ts
+        && !arena
+            .terms(*ts)
             .iter()
             .filter(|&&(_, t)| t != x)
             .all(|&(_, t)| is_parameter_expression(arena, t))
@@ -285,11 +289,12 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         }
         let (target, sign) = match replaced[x as usize] {
             None => (x, 1.0),
-            Some(r) => match flat.arena.node(r).clone() {
+            Some(r) => match *flat.arena.node(r) {
                 Node::Var(rep) => (rep, 1.0),
                 Node::Sum(ts, c) if ts.len() == 1 && f64::from_bits(c) == 0.0 => {
-                    match flat.arena.node(ts[0].1) {
-                        Node::Var(rep) => (*rep, 1.0 / f64::from_bits(ts[0].0)),
+                    let (k, t) = flat.arena.terms(ts)[0];
+                    match flat.arena.node(t) {
+                        Node::Var(rep) => (*rep, 1.0 / f64::from_bits(k)),
                         _ => continue,
                     }
                 }
@@ -376,7 +381,7 @@ fn derivative_pattern(arena: &Arena, r: Id) -> Option<(u32, u32)> {
     }
     let mut der = None;
     let mut var = None;
-    for &(k, t) in ts.iter() {
+    for &(k, t) in arena.terms(*ts) {
         let k = f64::from_bits(k);
         match arena.node(t) {
             Node::Der(inner) => match arena.node(*inner) {

@@ -78,7 +78,7 @@ impl SlotTable<'_> {
         if let Some(&s) = self.slot_of.get(&leaf) {
             return s;
         }
-        let (var, order) = match self.arena.node(leaf).clone() {
+        let (var, order) = match *self.arena.node(leaf) {
             Node::Var(i) => (i as usize, 0),
             Node::Der(inner) => {
                 let below = self.slot(inner);
