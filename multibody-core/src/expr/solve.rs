@@ -2,7 +2,7 @@
 
 use crate::hash::HashMap;
 
-use super::{Arena, Id};
+use super::{Arena, Id, Node};
 
 /// The solution of `e = 0` for a leaf `x`, when `e = a*x + b` with `a`, `b` free of `x`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,6 +17,15 @@ impl Arena {
     /// Solves `e = 0` for the leaf `x` when `e` is linear in `x` with a coefficient that is
     /// not identically zero. Returns `None` when `x` does not occur or occurs nonlinearly.
     pub fn solve_linear(&mut self, e: Id, x: Id) -> Option<LinearSolve> {
+        if let Some(direct) = self.solve_direct_term(e, x) {
+            return direct;
+        }
+        self.solve_linear_general(e, x)
+    }
+
+    /// [`solve_linear`](Self::solve_linear) by differentiation and substitution, for any
+    /// form of `e`.
+    pub(crate) fn solve_linear_general(&mut self, e: Id, x: Id) -> Option<LinearSolve> {
         let a = self.diff(e, x);
         if self.as_const(a) == Some(0.0) || self.contains(a, x) {
             return None;
@@ -30,6 +39,35 @@ impl Arena {
             solution,
             coefficient: a,
         })
+    }
+
+    /// [`solve_linear`](Self::solve_linear) without differentiating or substituting
+    /// when `e` is a sum with `x` as one of its terms: `Some(result)` when no other term
+    /// contains `x` (the coefficient is that term's constant, the solution the other
+    /// terms, computed with the same operations, and so the same rounding, as the
+    /// general path), `None` when the general path must decide.
+    fn solve_direct_term(&mut self, e: Id, x: Id) -> Option<Option<LinearSolve>> {
+        let Node::Sum(ts, c) = *self.node(e) else {
+            return None;
+        };
+        let terms = self.terms(ts);
+        let pos = terms.iter().position(|&(_, t)| t == x)?;
+        let k = f64::from_bits(terms[pos].0);
+        let inv = 1.0 / k;
+        let others: Vec<(f64, Id)> = terms
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != pos)
+            .map(|(_, &(kk, t))| (inv * -f64::from_bits(kk), t))
+            .collect();
+        if others.iter().any(|&(_, t)| self.contains(t, x)) {
+            return None;
+        }
+        let solution = self.linear_combination(inv * -f64::from_bits(c), &others);
+        Some(Some(LinearSolve {
+            solution,
+            coefficient: self.constant(k),
+        }))
     }
 
     /// Whether `e` is linear (affine) in the leaf `x`: `x` may occur, but its coefficient

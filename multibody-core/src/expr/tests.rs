@@ -125,3 +125,33 @@ fn equal_sums_and_products_are_one_node_with_operands_stored_once() {
     assert_eq!(a.len(), nodes + 1);
     assert_eq!(b.len(), nodes + 2);
 }
+
+#[test]
+fn solving_for_a_direct_term_equals_the_general_path() {
+    let mut a = Arena::new();
+    let (x, y, z) = (a.var(0), a.var(1), a.var(2));
+    let p = a.param(0);
+    let sin_y = a.f1(Func1::Sin, y);
+    let xy = a.mul(x, y);
+    let yz = a.mul(y, z);
+    let x2 = a.powi(x, 2);
+    let cases: Vec<Id> = vec![
+        // x a direct term: the shortcut answers.
+        a.linear_combination(0.1, &[(3.0, x), (5.0, sin_y), (1.0 / 3.0, yz)]),
+        a.linear_combination(0.0, &[(-1.0, x), (1.0, y)]),
+        a.linear_combination(2.5, &[(7.0, x)]),
+        a.linear_combination(0.0, &[(0.3, x), (1.0, p)]),
+        // x also inside another term: the general path decides (linear, nonlinear).
+        a.linear_combination(1.0, &[(2.0, x), (1.0, xy)]),
+        a.linear_combination(0.0, &[(2.0, x), (1.0, x2)]),
+    ];
+    for (i, &e) in cases.iter().enumerate() {
+        let fast = a.solve_linear(e, x);
+        let general = a.solve_linear_general(e, x);
+        assert_eq!(fast, general, "case {i}");
+        if i < 4 {
+            assert!(fast.is_some(), "case {i}");
+        }
+    }
+    assert!(a.solve_linear(cases[5], x).is_none());
+}
