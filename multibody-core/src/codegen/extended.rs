@@ -20,10 +20,8 @@
 //! intermediates of the linear algebra only: they are never unknowns of the DAE nor of
 //! its Newton iteration.
 
-use std::cmp::Reverse;
-use std::collections::{BTreeMap, BinaryHeap};
-
 use super::EvalError;
+use super::elimination_queue::EliminationQueue;
 use super::forward::forward_core;
 use super::sparsity::{Coloring, MAX_LANES, color_columns, merge, rows_to_csc};
 use super::tape::{Op, Tape, Workspace, solve_linear};
@@ -206,14 +204,10 @@ fn choose_cuts(
     let cost = |p: usize, s: usize| -> i64 { (p * s) as i64 - (p + s) as i64 };
     // Only costs up to `max_fill` are ever eliminated: a vertex costing more enters the
     // queue when an elimination next to it lowers its cost.
-    let max_cost = max_fill as i64;
-    let mut queue = EliminationQueue::default();
+    let mut queue = EliminationQueue::up_to(max_fill as i64);
     for v in 0..nregs {
         if live[v] && !fixed[v] {
-            let c = cost(preds[v].len(), succs[v].len());
-            if c <= max_cost {
-                queue.push_ascending(c, v as u32);
-            }
+            queue.push_ascending(cost(preds[v].len(), succs[v].len()), v as u32);
         }
     }
     let mut eliminated = vec![false; nv];
@@ -224,9 +218,7 @@ fn choose_cuts(
         }
         let now = cost(preds[vu].len(), succs[vu].len());
         if now != c {
-            if now <= max_cost {
-                queue.push(now, v);
-            }
+            queue.push(now, v);
             continue;
         }
         eliminated[vu] = true;
@@ -245,71 +237,11 @@ fn choose_cuts(
         for &x in ps.iter().chain(&ss) {
             let xu = x as usize;
             if xu < nregs && !fixed[xu] && !eliminated[xu] {
-                let c = cost(preds[xu].len(), succs[xu].len());
-                if c <= max_cost {
-                    queue.push(c, x);
-                }
+                queue.push(cost(preds[xu].len(), succs[xu].len()), x);
             }
         }
     }
     (0..nregs).map(|r| live[r] && !eliminated[r]).collect()
-}
-
-/// Vertices by `(cost, vertex)`, lowest first, with repeats allowed (entries go stale
-/// and are checked when popped). Costs are few distinct small integers: one bucket per
-/// cost, holding the vertices first queued in ascending order as a plain list (most
-/// vertices are queued once, so most pops read memory in order) and those queued again
-/// in a heap.
-#[derive(Default)]
-struct EliminationQueue {
-    buckets: BTreeMap<i64, CostBucket>,
-}
-
-#[derive(Default)]
-struct CostBucket {
-    ascending: Vec<u32>,
-    next: usize,
-    again: BinaryHeap<Reverse<u32>>,
-}
-
-impl EliminationQueue {
-    /// Queues `v` at cost `c`; within a cost, calls give ascending vertices.
-    fn push_ascending(&mut self, c: i64, v: u32) {
-        let b = self.buckets.entry(c).or_default();
-        debug_assert!(b.ascending.last().is_none_or(|&l| l < v));
-        b.ascending.push(v);
-    }
-
-    /// Queues `v` at cost `c`, in any order.
-    fn push(&mut self, c: i64, v: u32) {
-        self.buckets.entry(c).or_default().again.push(Reverse(v));
-    }
-
-    /// The lowest `(cost, vertex)` queued, removed.
-    fn pop(&mut self) -> Option<(i64, u32)> {
-        loop {
-            let mut entry = self.buckets.first_entry()?;
-            let c = *entry.key();
-            let b = entry.get_mut();
-            let first = b.ascending.get(b.next).copied();
-            let again = b.again.peek().map(|r| r.0);
-            let v = match (first, again) {
-                (Some(f), Some(a)) if a < f => b.again.pop().map(|r| r.0),
-                (Some(f), _) => {
-                    b.next += 1;
-                    Some(f)
-                }
-                (None, Some(_)) => b.again.pop().map(|r| r.0),
-                (None, None) => None,
-            };
-            match v {
-                Some(v) => return Some((c, v)),
-                None => {
-                    entry.remove();
-                }
-            }
-        }
-    }
 }
 
 impl ExtendedJacobian {
@@ -636,45 +568,5 @@ impl ExtendedJacobian {
                 .copy_from_slice(&tan[r as usize * w..r as usize * w + w]);
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod queue_tests {
-    use super::*;
-
-    /// The queue pops exactly what a binary heap of `(cost, vertex)` pops, repeats
-    /// included, for interleaved ascending first pushes, later pushes and pops.
-    #[test]
-    fn elimination_queue_pops_in_cost_then_vertex_order() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |m: u64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 33) % m
-        };
-        let mut queue = EliminationQueue::default();
-        let mut heap: BinaryHeap<Reverse<(i64, u32)>> = BinaryHeap::new();
-        for v in 0..500u32 {
-            let c = next(7) as i64 - 3;
-            queue.push_ascending(c, v);
-            heap.push(Reverse((c, v)));
-        }
-        let mut popped = 0;
-        while let Some(Reverse(expected)) = heap.pop() {
-            assert_eq!(queue.pop(), Some(expected));
-            popped += 1;
-            // Push some vertices again, at costs around the current one.
-            for _ in 0..next(3) {
-                if popped < 1500 {
-                    let (c, v) = (expected.0 + next(5) as i64 - 2, next(500) as u32);
-                    queue.push(c, v);
-                    heap.push(Reverse((c, v)));
-                }
-            }
-        }
-        assert_eq!(queue.pop(), None);
-        assert!(popped > 500);
     }
 }

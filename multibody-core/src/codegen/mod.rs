@@ -16,6 +16,7 @@
 
 mod compile;
 pub mod dae;
+mod elimination_queue;
 mod extended;
 mod forward;
 mod schedule;

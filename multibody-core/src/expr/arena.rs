@@ -52,6 +52,13 @@ fn grow_to<T: Copy>(v: &mut Vec<T>, i: u32, empty: T) -> &mut T {
     &mut v[i]
 }
 
+/// Appends `items` to `pool`: the operands of a new sum or product.
+fn append<T: Copy>(pool: &mut Vec<T>, items: &[T]) -> Operands {
+    let start = pool.len();
+    pool.extend_from_slice(items);
+    Operands::new(start, items.len())
+}
+
 /// Integer value of `x` if it is one that fits an exponent.
 fn as_exponent(x: f64) -> Option<i32> {
     if x.fract() == 0.0 && x.abs() <= 1024.0 {
@@ -140,35 +147,19 @@ impl Arena {
 
     /// A sum node with these terms (already sorted and merged).
     fn intern_sum(&mut self, terms: &[(u64, Id)], c: u64) -> Id {
-        let start = self.term_pool.len();
-        self.term_pool.extend_from_slice(terms);
-        let ts = Operands {
-            start: start as u32,
-            len: terms.len() as u32,
-        };
-        let id = self.intern_hashed(Node::Sum(ts, c));
-        if self.nodes[id.index()] != Node::Sum(ts, c) {
-            // An equal sum existed: its terms are stored already.
-            self.term_pool.truncate(start);
-        }
-        id
+        let ts = append(&mut self.term_pool, terms);
+        self.intern_hashed(Node::Sum(ts, c))
     }
 
     /// A product node with these factors (already sorted and merged).
     fn intern_product(&mut self, factors: &[(Id, i32)]) -> Id {
-        let start = self.factor_pool.len();
-        self.factor_pool.extend_from_slice(factors);
-        let fs = Operands {
-            start: start as u32,
-            len: factors.len() as u32,
-        };
-        let id = self.intern_hashed(Node::Prod(fs));
-        if self.nodes[id.index()] != Node::Prod(fs) {
-            self.factor_pool.truncate(start);
-        }
-        id
+        let fs = append(&mut self.factor_pool, factors);
+        self.intern_hashed(Node::Prod(fs))
     }
 
+    /// The node `n`, stored unless an equal one exists. A sum or product candidate has
+    /// its operands appended at the end of its pool; they are given back when an equal
+    /// node already holds them.
     fn intern_hashed(&mut self, n: Node) -> Id {
         let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
         let h = hash_node(&n, terms, factors);
@@ -183,6 +174,11 @@ impl Arena {
             (stored, n) => stored == n,
         };
         if let Some(&id) = self.table.find(h, same) {
+            match n {
+                Node::Sum(ts, _) => self.term_pool.truncate(ts.start()),
+                Node::Prod(fs) => self.factor_pool.truncate(fs.start()),
+                _ => {}
+            }
             return Id(id);
         }
         let id = self.nodes.len() as u32;

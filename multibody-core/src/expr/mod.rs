@@ -216,6 +216,17 @@ impl Operands {
         self.len == 0
     }
 
+    fn new(start: usize, len: usize) -> Operands {
+        Operands {
+            start: start as u32,
+            len: len as u32,
+        }
+    }
+
+    fn start(self) -> usize {
+        self.start as usize
+    }
+
     fn range(self) -> std::ops::Range<usize> {
         self.start as usize..(self.start + self.len) as usize
     }
