@@ -16,10 +16,10 @@ pub struct Arena {
     term_pool: Vec<(u64, Id)>,
     /// The factors of every product node, each node's a contiguous range.
     factor_pool: Vec<(Id, i32)>,
-    /// Hash of each node (for the table's growth).
-    hashes: Vec<u64>,
-    /// Node ids by hash: each node is stored once, in `nodes`.
-    table: HashTable<u32>,
+    /// Node ids by hash, each with the high half of its node's hash (so the table
+    /// grows without reading the nodes). Every node except the leaves with a direct
+    /// index below is stored once, in `nodes`, and found here.
+    table: HashTable<(u32, u32)>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
     /// the most frequent lookups skip hashing.
     var_leaf: Vec<[u32; 2]>,
@@ -41,6 +41,12 @@ impl Default for Arena {
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The table hash of a node whose full hash has `high` as its high half: the low bits
+/// (the bucket) and the top seven bits (hashbrown's tag) both come from `high`.
+fn table_hash(high: u32) -> u64 {
+    (u64::from(high) << 32) | u64::from(high)
 }
 
 /// Entry `i` of a direct index, growing it (doubling, filled with `empty`) when short.
@@ -75,7 +81,6 @@ impl Arena {
             nodes: Vec::new(),
             term_pool: Vec::new(),
             factor_pool: Vec::new(),
-            hashes: Vec::new(),
             table: HashTable::new(),
             var_leaf: Vec::new(),
             param_leaf: Vec::new(),
@@ -136,7 +141,7 @@ impl Arena {
         if slot != u32::MAX {
             return Id(slot);
         }
-        let id = self.intern_hashed(Node::Der(x));
+        let id = self.push_node(Node::Der(x));
         self.leaf_slot(i)[1] = id.0;
         id
     }
@@ -162,18 +167,22 @@ impl Arena {
     /// node already holds them.
     fn intern_hashed(&mut self, n: Node) -> Id {
         let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
-        let h = hash_node(&n, terms, factors);
+        let high = (hash_node(&n, terms, factors) >> 32) as u32;
+        let h = table_hash(high);
         let nodes = &self.nodes;
         // Equal by content: the operands of a stored sum or product are compared, not
         // its range in the pool.
-        let same = |&i: &u32| match (nodes[i as usize], n) {
-            (Node::Sum(a, ca), Node::Sum(b, cb)) => {
-                ca == cb && terms[a.range()] == terms[b.range()]
-            }
-            (Node::Prod(a), Node::Prod(b)) => factors[a.range()] == factors[b.range()],
-            (stored, n) => stored == n,
+        let same = |&(i, hi): &(u32, u32)| {
+            hi == high
+                && match (nodes[i as usize], n) {
+                    (Node::Sum(a, ca), Node::Sum(b, cb)) => {
+                        ca == cb && terms[a.range()] == terms[b.range()]
+                    }
+                    (Node::Prod(a), Node::Prod(b)) => factors[a.range()] == factors[b.range()],
+                    (stored, n) => stored == n,
+                }
         };
-        if let Some(&id) = self.table.find(h, same) {
+        if let Some(&(id, _)) = self.table.find(h, same) {
             match n {
                 Node::Sum(ts, _) => self.term_pool.truncate(ts.start()),
                 Node::Prod(fs) => self.factor_pool.truncate(fs.start()),
@@ -181,11 +190,17 @@ impl Arena {
             }
             return Id(id);
         }
+        let id = self.push_node(n);
+        self.table
+            .insert_unique(h, (id.0, high), |&(_, hi)| table_hash(hi));
+        id
+    }
+
+    /// Stores `n` as a new node without entering it in the table: for the leaves that
+    /// are only ever found through their direct index.
+    fn push_node(&mut self, n: Node) -> Id {
         let id = self.nodes.len() as u32;
         self.nodes.push(n);
-        self.hashes.push(h);
-        let hashes = &self.hashes;
-        self.table.insert_unique(h, id, |&i| hashes[i as usize]);
         Id(id)
     }
 
@@ -219,7 +234,7 @@ impl Arena {
         if slot != u32::MAX {
             return Id(slot);
         }
-        let id = self.intern_hashed(Node::Var(i));
+        let id = self.push_node(Node::Var(i));
         self.leaf_slot(i)[0] = id.0;
         id
     }
@@ -232,7 +247,7 @@ impl Arena {
         {
             return Id(slot);
         }
-        let id = self.intern_hashed(Node::Param(i));
+        let id = self.push_node(Node::Param(i));
         *grow_to(&mut self.param_leaf, i, u32::MAX) = id.0;
         id
     }

@@ -15,6 +15,8 @@ mod diff;
 mod display;
 mod eval;
 pub(crate) mod global;
+mod id_index;
+mod node_map;
 mod solve;
 mod subst;
 mod vector;
@@ -22,8 +24,9 @@ mod vector;
 pub use arena::Arena;
 pub use display::NameResolver;
 pub use global::{Expr, symbol_name};
+pub use id_index::IdIndex;
+pub use node_map::{NodeMap, NodeTable};
 pub use solve::LinearSolve;
-pub use subst::ImportMemo;
 pub use vector::{Mat3, Vec3};
 
 /// Index of a node in an [`Arena`].

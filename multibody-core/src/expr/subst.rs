@@ -2,7 +2,14 @@
 
 use crate::hash::{HashMap, HashSet};
 
-use super::{Arena, Id, Node, is_leaf};
+use std::cell::RefCell;
+
+use super::{Arena, Id, Node, NodeMap, NodeTable, is_leaf};
+
+thread_local! {
+    /// The stack and scan list of [`Arena::walk`], reused from walk to walk.
+    static WALK_BUFFERS: RefCell<(Vec<Id>, Vec<Id>)> = const { RefCell::new((Vec::new(), Vec::new())) };
+}
 
 impl Arena {
     /// Rebuilds `e` through the simplifying constructors after replacing every node found
@@ -21,35 +28,37 @@ impl Arena {
         self.subst_rec(e, map, &mut memo, true)
     }
 
-    /// [`Arena::substitute_leaves`] with a memo shared across calls.
+    /// [`Arena::substitute_leaves`] with a memo shared across calls. The map and the
+    /// memo may be hash maps or dense [`NodeMap`]s (better when large).
     pub fn substitute_leaves_memo(
         &mut self,
         e: Id,
-        map: &HashMap<Id, Id>,
-        memo: &mut HashMap<Id, Id>,
+        map: &impl NodeTable,
+        memo: &mut impl NodeTable,
     ) -> Id {
         self.subst_rec(e, map, memo, true)
     }
 
     /// [`Arena::substitute`] with a memo shared across calls (for many expressions
-    /// under one map).
+    /// under one map). The map and the memo may be hash maps or dense [`NodeMap`]s
+    /// (better when large).
     pub fn substitute_memo(
         &mut self,
         e: Id,
-        map: &HashMap<Id, Id>,
-        memo: &mut HashMap<Id, Id>,
+        map: &impl NodeTable,
+        memo: &mut impl NodeTable,
     ) -> Id {
         self.subst_rec(e, map, memo, false)
     }
 
-    fn subst_rec(
+    fn subst_rec<M: NodeTable, T: NodeTable>(
         &mut self,
         e: Id,
-        map: &HashMap<Id, Id>,
-        memo: &mut HashMap<Id, Id>,
+        map: &M,
+        memo: &mut T,
         opaque: bool,
     ) -> Id {
-        if let Some(&r) = map.get(&e) {
+        if let Some(r) = map.get(e) {
             return r;
         }
         match self.node(e) {
@@ -57,7 +66,7 @@ impl Arena {
             Node::Der(_) if opaque => return e,
             _ => {}
         }
-        if let Some(&r) = memo.get(&e) {
+        if let Some(r) = memo.get(e) {
             return r;
         }
         // Children are read by position: nothing is copied.
@@ -176,11 +185,30 @@ impl Arena {
 
     /// Visits each distinct node of `e` once (depth first); `visit` returns whether to
     /// descend into the node's operands. Small expressions are deduplicated by a linear
-    /// scan, larger ones by a hash set, so the common case allocates one small stack.
+    /// scan, larger ones by a hash set. The stack and the scan list are buffers kept per
+    /// thread, so the common case allocates nothing (a walk started from inside `visit`
+    /// gets buffers of its own).
     fn walk(&self, e: Id, visit: &mut dyn FnMut(Id, &Node) -> bool) {
+        WALK_BUFFERS.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut buffers) => {
+                let (stack, seen) = &mut *buffers;
+                self.walk_with(e, visit, stack, seen);
+            }
+            Err(_) => self.walk_with(e, visit, &mut Vec::new(), &mut Vec::new()),
+        });
+    }
+
+    fn walk_with(
+        &self,
+        e: Id,
+        visit: &mut dyn FnMut(Id, &Node) -> bool,
+        stack: &mut Vec<Id>,
+        seen_small: &mut Vec<Id>,
+    ) {
         const SMALL: usize = 48;
-        let mut stack = vec![e];
-        let mut seen_small: Vec<Id> = Vec::new();
+        stack.clear();
+        seen_small.clear();
+        stack.push(e);
         let mut seen_large: Option<HashSet<Id>> = None;
         while let Some(x) = stack.pop() {
             let new = match &mut seen_large {
@@ -203,7 +231,7 @@ impl Arena {
                 continue;
             }
             if visit(x, self.node(x)) {
-                self.push_children(x, &mut stack);
+                self.push_children(x, stack);
             }
         }
     }
@@ -217,7 +245,7 @@ impl Arena {
         src: &Arena,
         e: Id,
         leaf: &mut dyn FnMut(&mut Arena, &Node) -> Id,
-        memo: &mut ImportMemo,
+        memo: &mut NodeMap,
     ) -> Id {
         if let Some(r) = memo.get(e) {
             return r;
@@ -276,41 +304,5 @@ impl Arena {
         };
         memo.insert(e, r);
         r
-    }
-}
-
-/// The memo of [`Arena::import`]: the copy of each source node, indexed densely by the
-/// source node's id (much faster than hashing for large models).
-#[derive(Clone, Debug, Default)]
-pub struct ImportMemo(Vec<u32>);
-
-impl ImportMemo {
-    /// An empty memo.
-    pub fn new() -> Self {
-        ImportMemo(Vec::new())
-    }
-
-    /// The copy of `e`, if made.
-    #[inline]
-    pub fn get(&self, e: Id) -> Option<Id> {
-        match self.0.get(e.index()) {
-            Some(&r) if r != u32::MAX => Some(Id(r)),
-            _ => None,
-        }
-    }
-
-    /// Records the copy of `e`.
-    #[inline]
-    pub fn insert(&mut self, e: Id, r: Id) {
-        let i = e.index();
-        if i >= self.0.len() {
-            self.0.resize((i + 1).max(self.0.len() * 2), u32::MAX);
-        }
-        self.0[i] = r.0;
-    }
-
-    /// Forgets every copy.
-    pub fn clear(&mut self) {
-        self.0.clear();
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::hash::HashMap;
 
-use crate::expr::{Arena, Expr, Id, ImportMemo, NameResolver, Node};
+use crate::expr::{Arena, Expr, Id, NameResolver, Node, NodeMap};
 use crate::names::closest;
 
 use super::error::ModelError;
@@ -165,7 +165,7 @@ struct Flattener<'g> {
     param_of_sym: Vec<u32>,
     connectors: Vec<ConnectorInfo>,
     connector_of_path: HashMap<String, usize>,
-    memo: ImportMemo,
+    memo: NodeMap,
     /// Declarations whose names were never interned (pushed by hand): for duplicates.
     unnamed: HashMap<String, u32>,
     errors: Vec<ModelError>,
@@ -218,7 +218,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         param_of_sym: vec![u32::MAX; g.n_symbols()],
         connectors: Vec::new(),
         connector_of_path: HashMap::default(),
-        memo: ImportMemo::new(),
+        memo: NodeMap::new(),
         unnamed: HashMap::default(),
         errors: Vec::new(),
     };

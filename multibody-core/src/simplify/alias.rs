@@ -9,7 +9,7 @@
 
 use crate::hash::HashMap;
 
-use crate::expr::{Arena, Id, Node};
+use crate::expr::{Arena, Id, Node, NodeMap};
 use crate::model::{FlatSystem, VarKind};
 
 /// What alias elimination found.
@@ -261,17 +261,22 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         flat.starts[rep as usize] = start;
     }
     map.reserve(replaced.iter().filter(|r| r.is_some()).count());
+    // The same map, dense, for the pass over the whole model.
+    let mut dense_map = NodeMap::new();
     for (x, r) in replaced.iter().enumerate() {
         if let Some(r) = *r {
             let leaf = flat.arena.var(x as u32);
             map.insert(leaf, r);
+            dense_map.insert(leaf, r);
         }
     }
     // Apply the substitution to the remaining equations.
-    let mut memo = HashMap::default();
+    let mut memo = NodeMap::new();
     for (e, eq) in flat.equations.iter_mut().enumerate() {
         if !removed[e] {
-            eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
+            eq.residual = flat
+                .arena
+                .substitute_memo(eq.residual, &dense_map, &mut memo);
         }
     }
     // Derivative rules (der(x) is an expression, as for an orientation matrix): moved
@@ -354,7 +359,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         }
     }
     if !dmap.is_empty() {
-        let mut memo = HashMap::default();
+        let mut memo = NodeMap::new();
         for (e, eq) in flat.equations.iter_mut().enumerate() {
             if !removed[e] {
                 eq.residual = flat.arena.substitute_memo(eq.residual, &dmap, &mut memo);

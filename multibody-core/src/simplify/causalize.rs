@@ -11,7 +11,7 @@
 
 use crate::hash::{HashMap, HashSet};
 
-use crate::expr::{Arena, Id, Node};
+use crate::expr::{Arena, Id, IdIndex, Node};
 use crate::structure::BipartiteGraph;
 use crate::structure::blt::blt;
 use crate::structure::dm::dulmage_mendelsohn;
@@ -195,13 +195,13 @@ pub fn causalize(
     limits: LinearBlockLimits,
     temps: &mut Temporaries<'_>,
 ) -> Result<Schedule, Singular> {
-    let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(i, &l)| (l, i)).collect();
+    let index = IdIndex::new(unknowns);
     let mut g = BipartiteGraph::new(unknowns.len());
     for &r in equations {
         let vars: Vec<usize> = arena
             .leaves(r)
             .into_iter()
-            .filter_map(|l| index.get(&l).copied())
+            .filter_map(|l| index.get(l))
             .collect();
         g.add_equation(vars);
     }

@@ -4,7 +4,7 @@
 
 use crate::hash::HashMap;
 
-use crate::expr::{Arena, Id, Node};
+use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
 use crate::model::EquationText;
 use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{
@@ -49,19 +49,42 @@ pub(crate) struct Reduced {
     pub warnings: Vec<String>,
 }
 
-/// Applies the derivative aliases to an expression (`der(x) -> v`).
-pub(crate) fn canonical(arena: &mut Arena, e: Id, derivative_map: &HashMap<Id, Id>) -> Id {
+/// Applies the derivative aliases to an expression (`der(x) -> v`), with a memo kept
+/// across the expressions of one pass.
+fn canonical(arena: &mut Arena, e: Id, derivative_map: &HashMap<Id, Id>, memo: &mut NodeMap) -> Id {
     if derivative_map.is_empty() {
         e
     } else {
-        arena.substitute(e, derivative_map)
+        arena.substitute_memo(e, derivative_map, memo)
     }
 }
 
 /// The canonical time derivative of a leaf.
 fn leaf_derivative(arena: &mut Arena, leaf: Id, dmap: &HashMap<Id, Id>) -> Id {
     let d = arena.der(leaf);
-    canonical(arena, d, dmap)
+    canonical_leaf(arena, d, dmap)
+}
+
+/// [`canonical`] of a leaf (`x`, `der(x)`, `der(der(x))`, ...): what substitution
+/// gives, found through the map alone.
+fn canonical_leaf(arena: &mut Arena, e: Id, dmap: &HashMap<Id, Id>) -> Id {
+    if let Some(&r) = dmap.get(&e) {
+        return r;
+    }
+    match *arena.node(e) {
+        Node::Der(x) => {
+            let nx = canonical_leaf(arena, x, dmap);
+            if nx == x { e } else { arena.der(nx) }
+        }
+        _ => e,
+    }
+}
+
+/// The slot of `leaf`, which exists.
+fn below_slot(slot_of: &IdIndex, leaf: Id) -> usize {
+    slot_of
+        .get(leaf)
+        .expect("the slot below a derivative exists")
 }
 
 /// Builds slots for the leaves of the equations and for every kept variable.
@@ -69,13 +92,14 @@ pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,
     pub names: &'a [&'a str],
     pub slots: Vec<Slot>,
-    pub slot_of: HashMap<Id, usize>,
+    /// The slot of each leaf, indexed by the leaf's id.
+    pub slot_of: IdIndex,
 }
 
 impl SlotTable<'_> {
     /// The slot of a leaf (`Var` or `Der`), creating it and its lower-order chain.
     pub fn slot(&mut self, leaf: Id) -> usize {
-        if let Some(&s) = self.slot_of.get(&leaf) {
+        if let Some(s) = self.slot_of.get(leaf) {
             return s;
         }
         let (var, order) = match *self.arena.node(leaf) {
@@ -94,7 +118,7 @@ impl SlotTable<'_> {
                     Node::Der(i) => *i,
                     _ => unreachable!(),
                 };
-                format!("der({})", self.slots[self.slot_of[&inner]].name)
+                format!("der({})", self.slots[below_slot(&self.slot_of, inner)].name)
             }
         };
         let s = self.slots.len();
@@ -182,7 +206,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         arena,
         names,
         slots: Vec::new(),
-        slot_of: HashMap::default(),
+        slot_of: IdIndex::default(),
     };
     for (i, &k) in kept.iter().enumerate() {
         if k {
@@ -245,10 +269,11 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     let n_original = eqs.len();
     let anti_eq = red.antiderivative_eq();
     let mut warnings = Vec::new();
+    let mut memo = NodeMap::new();
     for e in n_original..red.graph.n_eqs() {
         let src = anti_eq[e].expect("a new equation is a derivative");
         let d = table.arena.time_derivative(eqs[src].residual);
-        let d = canonical(table.arena, d, derivative_map);
+        let d = canonical(table.arena, d, derivative_map, &mut memo);
         let text = eqs[src].text.derivative();
         let before = table.slots.len();
         let _ = incidence(&mut table, d);
@@ -368,8 +393,13 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     let mut dummy = selection.dummy.clone();
     dummy.resize(table.slots.len(), false);
     Ok(Reduced {
+        slot_of: table
+            .slots
+            .iter()
+            .enumerate()
+            .map(|(s, slot)| (slot.leaf, s))
+            .collect(),
         slots: table.slots,
-        slot_of: table.slot_of,
         var_diff,
         equations: eqs,
         states: selection.states,
@@ -391,7 +421,7 @@ fn derivative_links(
     let mut implicit = vec![Vec::new(); n];
     for s in 0..n {
         let d = leaf_derivative(table.arena, table.slots[s].leaf, dmap);
-        if let Some(&ds) = table.slot_of.get(&d) {
+        if let Some(ds) = table.slot_of.get(d) {
             var_diff[s] = Some(ds);
         } else if !matches!(table.arena.node(d), Node::Der(_)) {
             implicit[s] = incidence(table, d);

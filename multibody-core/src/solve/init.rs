@@ -16,7 +16,7 @@ use crate::hash::HashMap;
 use crate::model::EquationText;
 
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
-use crate::expr::{Id, Node};
+use crate::expr::{Id, IdIndex, Node};
 use crate::simplify::SimplifiedSystem;
 use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
 use crate::structure::BipartiteGraph;
@@ -71,7 +71,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     for &j in &free_params {
         unknowns.push(arena.param(j as u32));
     }
-    let index: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(k, &l)| (l, k)).collect();
+    let index = IdIndex::new(&unknowns);
 
     // Mandatory equations.
     let mut eqs: Vec<(Id, EquationText)> = sys
@@ -81,7 +81,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .collect();
     for (r, text) in &sys.initial_equations {
         for l in arena.leaves(*r) {
-            if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains_key(&l) {
+            if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains(l) {
                 return Err(InitError::BadValue {
                     model,
                     message: format!(
@@ -103,7 +103,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             Some(r) => r,
             None => arena.var(i as u32),
         };
-        let has_unknown = arena.leaves(value).iter().any(|l| index.contains_key(l));
+        let has_unknown = arena.leaves(value).iter().any(|&l| index.contains(l));
         if !has_unknown {
             implied.push((i, value));
             continue;
@@ -120,7 +120,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         arena
             .leaves(r)
             .into_iter()
-            .filter_map(|l| index.get(&l).copied())
+            .filter_map(|l| index.get(l))
             .collect()
     };
     let mut graph = BipartiteGraph::new(unknowns.len());
@@ -164,26 +164,22 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     };
     // Other variables qualify only if they could have been states (they have a
     // derivative): never orientation matrix entries and the like.
-    let mut candidates: Vec<usize> = (0..sys.slots.len())
+    let candidates: Vec<usize> = (0..sys.slots.len())
         .filter(|&s| is_state[s] || (has_start(s) && sys.var_diff[s].is_some()))
         .collect();
-    candidates.sort_by(|&a, &b| {
-        class(a)
-            .cmp(&class(b))
-            .then(
-                sys.variables[sys.slots[b].var]
-                    .state_priority
-                    .total_cmp(&sys.variables[sys.slots[a].var].state_priority),
-            )
-            .then(a.cmp(&b))
-    });
+    // Sort keys first: comparing through the slots and variables would jump around
+    // memory at every comparison.
+    let key = |s: usize| (class(s), -sys.variables[sys.slots[s].var].state_priority);
+    let mut keyed: Vec<((u8, f64), usize)> = candidates.iter().map(|&s| (key(s), s)).collect();
+    keyed.sort_by(|(ka, a), (kb, b)| ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1)).then(a.cmp(b)));
+    let candidates: Vec<usize> = keyed.into_iter().map(|(_, s)| s).collect();
     let mut deficiency = unknowns.len() - eqs.len();
     for s in candidates {
         if deficiency == 0 {
             break;
         }
         let slot = &sys.slots[s];
-        let k = index[&slot.leaf];
+        let k = index.get(slot.leaf).expect("a slot is an unknown");
         graph.eq_vars.push(vec![k]);
         let e_new = graph.eq_vars.len() - 1;
         eq_to_var.push(None);

@@ -1,0 +1,67 @@
+//! A dense index from node ids to positions in a list.
+
+use super::Id;
+
+/// The position of each id of a list, looked up by the id itself (a vector indexed by
+/// id, not a hash map): ids made for one part of a model lie close together, so
+/// lookups stay in cache where hashed ones would not. Memory is one `u32` per id up to
+/// the largest listed.
+#[derive(Clone, Debug, Default)]
+pub struct IdIndex(Vec<u32>);
+
+impl IdIndex {
+    /// The index of `ids`; an id listed twice has its last position.
+    pub fn new(ids: &[Id]) -> Self {
+        let len = ids.iter().map(|id| id.index() + 1).max().unwrap_or(0);
+        let mut slots = vec![u32::MAX; len];
+        for (k, id) in ids.iter().enumerate() {
+            slots[id.index()] = k as u32;
+        }
+        IdIndex(slots)
+    }
+
+    /// Lists `id` at position `k` (growing the index when `id` is beyond it).
+    pub fn insert(&mut self, id: Id, k: usize) {
+        let i = id.index();
+        if i >= self.0.len() {
+            self.0.resize((i + 1).max(2 * self.0.len()), u32::MAX);
+        }
+        self.0[i] = k as u32;
+    }
+
+    /// The position of `id`, if listed.
+    #[inline]
+    pub fn get(&self, id: Id) -> Option<usize> {
+        match self.0.get(id.index()) {
+            Some(&k) if k != u32::MAX => Some(k as usize),
+            _ => None,
+        }
+    }
+
+    /// Whether `id` is listed.
+    #[inline]
+    pub fn contains(&self, id: Id) -> bool {
+        self.get(id).is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn positions_are_found_by_id_and_the_last_of_a_repeated_id_wins() {
+        let index = IdIndex::new(&[Id(7), Id(2), Id(40), Id(2)]);
+        assert_eq!(index.get(Id(7)), Some(0));
+        assert_eq!(index.get(Id(2)), Some(3));
+        assert_eq!(index.get(Id(40)), Some(2));
+        assert_eq!(index.get(Id(3)), None);
+        assert_eq!(index.get(Id(41)), None);
+        assert!(!IdIndex::new(&[]).contains(Id(0)));
+        let mut grown = IdIndex::default();
+        grown.insert(Id(9), 4);
+        grown.insert(Id(1000), 5);
+        assert_eq!((grown.get(Id(9)), grown.get(Id(1000))), (Some(4), Some(5)));
+        assert_eq!(grown.get(Id(500)), None);
+    }
+}
