@@ -16,9 +16,9 @@ pub struct Arena {
     term_pool: Vec<(u64, Id)>,
     /// The factors of every product node, each node's a contiguous range.
     factor_pool: Vec<(Id, i32)>,
-    /// Node ids by hash, each with the high half of its node's hash (so the table
-    /// grows without reading the nodes). Every node except the leaves with a direct
-    /// index below is stored once, in `nodes`, and found here.
+    /// Node ids by hash (see `table_hash`), each with the high half of its node's
+    /// content hash. Every node except the leaves with a direct index below is stored
+    /// once, in `nodes`, and found here.
     table: HashTable<(u32, u32)>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
     /// the most frequent lookups skip hashing.
@@ -43,10 +43,32 @@ impl Default for Arena {
     }
 }
 
-/// The table hash of a node whose full hash has `high` as its high half: the low bits
-/// (the bucket) and the top seven bits (hashbrown's tag) both come from `high`.
-fn table_hash(high: u32) -> u64 {
-    (u64::from(high) << 32) | u64::from(high)
+/// The operand with the largest id (the newest), for a node that has operands.
+fn newest_operand(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> Option<u32> {
+    let id = match *n {
+        Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => return None,
+        Node::Der(a) | Node::F1(_, a) => a,
+        Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => a.max(b),
+        Node::If(c, a, b) => c.max(a).max(b),
+        Node::Sum(ts, _) => terms[ts.range()].iter().map(|&(_, t)| t).max()?,
+        Node::Prod(fs) => factors[fs.range()].iter().map(|&(b, _)| b).max()?,
+    };
+    Some(id.0)
+}
+
+/// The table hash of a node: hashbrown's tag (the top seven bits) comes from the
+/// content hash's high half `high`; the bucket comes from the node's newest operand
+/// (four buckets per operand id, two bits of `high` choosing among them), so nodes
+/// built from nearby nodes sit in nearby buckets. Work on one part of a large model
+/// then finds its table entries in cache, where a content-only bucket would miss it
+/// every time. Equal nodes have equal operands, so they still meet in one bucket.
+/// Nodes without operands (constants) take their bucket from `high`.
+fn table_hash(anchor: Option<u32>, high: u32) -> u64 {
+    let bucket = match anchor {
+        Some(a) => a.wrapping_mul(4) | (high & 3),
+        None => high,
+    };
+    (u64::from(high) << 32) | u64::from(bucket)
 }
 
 /// Entry `i` of a direct index, growing it (doubling, filled with `empty`) when short.
@@ -168,7 +190,7 @@ impl Arena {
     fn intern_hashed(&mut self, n: Node) -> Id {
         let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
         let high = (hash_node(&n, terms, factors) >> 32) as u32;
-        let h = table_hash(high);
+        let h = table_hash(newest_operand(&n, terms, factors), high);
         let nodes = &self.nodes;
         // Equal by content: the operands of a stored sum or product are compared, not
         // its range in the pool.
@@ -191,8 +213,11 @@ impl Arena {
             return Id(id);
         }
         let id = self.push_node(n);
-        self.table
-            .insert_unique(h, (id.0, high), |&(_, hi)| table_hash(hi));
+        // Growth re-reads each entry's node: in table order, which is nearly id order.
+        let (nodes, terms, factors) = (&self.nodes, &self.term_pool, &self.factor_pool);
+        self.table.insert_unique(h, (id.0, high), |&(i, hi)| {
+            table_hash(newest_operand(&nodes[i as usize], terms, factors), hi)
+        });
         id
     }
 

@@ -127,6 +127,35 @@ fn equal_sums_and_products_are_one_node_with_operands_stored_once() {
 }
 
 #[test]
+fn nodes_sharing_their_newest_operand_are_told_apart_and_found_after_growth() {
+    // The table places a node by its newest operand: thousands of nodes built on the
+    // same `x` crowd one region, and the table grows many times meanwhile. Every node
+    // must still be found again, and distinct ones stay distinct.
+    let mut a = Arena::new();
+    let (x, y) = (a.var(0), a.var(1));
+    let build = |a: &mut Arena| -> Vec<Id> {
+        let mut made = Vec::new();
+        for k in 1..=3000 {
+            let c = a.constant(k as f64);
+            made.push(a.powi(x, k));
+            made.push(a.linear_combination(0.0, &[(1.0, x), (1.0, c)]));
+            made.push(a.f1(Func1::Sin, made[made.len() - 1]));
+            made.push(a.linear_combination(k as f64, &[(1.0, x), (2.0, y)]));
+        }
+        made
+    };
+    let first = build(&mut a);
+    let len = a.len();
+    let distinct: std::collections::HashSet<Id> = first.iter().copied().collect();
+    assert_eq!(distinct.len(), first.len());
+    // Var, param and der leaves never enter the table but are still one node each.
+    let (v, p, d) = (a.var(7), a.param(3), a.der(y));
+    assert_eq!((a.var(7), a.param(3), a.der(y)), (v, p, d));
+    assert_eq!(build(&mut a), first);
+    assert_eq!(a.len(), len + 3);
+}
+
+#[test]
 fn solving_for_a_direct_term_equals_the_general_path() {
     let mut a = Arena::new();
     let (x, y, z) = (a.var(0), a.var(1), a.var(2));

@@ -15,6 +15,30 @@ use std::collections::VecDeque;
 use crate::hash::HashMap;
 use crate::model::EquationText;
 
+/// What an equation of the initialization system is, shown in its error messages
+/// (written out only then).
+enum InitText<'a> {
+    /// An equation of the simplified model.
+    Model(&'a EquationText),
+    /// An initial equation, as written.
+    Initial(&'a str),
+    /// The fixed start value of a variable.
+    FixedStart(&'a str),
+    /// A start value assumed to complete the initial conditions.
+    AssumedStart(&'a str),
+}
+
+impl std::fmt::Display for InitText<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            InitText::Model(text) => write!(f, "{text}"),
+            InitText::Initial(text) => write!(f, "initial equation {text}"),
+            InitText::FixedStart(name) => write!(f, "fixed start value of {name}"),
+            InitText::AssumedStart(name) => write!(f, "assumed start value of {name}"),
+        }
+    }
+}
+
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, IdIndex, Node};
 use crate::simplify::SimplifiedSystem;
@@ -74,10 +98,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let index = IdIndex::new(&unknowns);
 
     // Mandatory equations.
-    let mut eqs: Vec<(Id, EquationText)> = sys
+    let mut eqs: Vec<(Id, InitText<'_>)> = sys
         .equations
         .iter()
-        .map(|e| (e.residual, e.text.clone()))
+        .map(|e| (e.residual, InitText::Model(&e.text)))
         .collect();
     for (r, text) in &sys.initial_equations {
         for l in arena.leaves(*r) {
@@ -92,7 +116,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
                 });
             }
         }
-        eqs.push((*r, EquationText::plain(format!("initial equation {text}"))));
+        eqs.push((*r, InitText::Initial(text)));
     }
     let mut implied: Vec<(usize, Id)> = Vec::new();
     for i in 0..nv {
@@ -109,10 +133,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             continue;
         }
         let r = arena.sub(value, start_leaf[i]);
-        eqs.push((
-            r,
-            EquationText::plain(format!("fixed start value of {}", sys.variables[i].name)),
-        ));
+        eqs.push((r, InitText::FixedStart(&sys.variables[i].name)));
     }
 
     // Structure: mandatory equations must be matchable.
@@ -194,10 +215,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             } else {
                 slot.leaf
             };
-            eqs.push((
-                r,
-                EquationText::plain(format!("assumed start value of {}", slot.name)),
-            ));
+            eqs.push((r, InitText::AssumedStart(&slot.name)));
             assumed.push((slot.name.clone(), value));
             deficiency -= 1;
         } else {

@@ -101,18 +101,27 @@ impl<'a> DaeProblem<'a> {
             }
             .into());
         }
-        let var_index: HashMap<&str, usize> = sys
-            .variables
-            .iter()
-            .enumerate()
-            .map(|(i, v)| (v.name.as_str(), i))
-            .collect();
-        let param_index: HashMap<&str, usize> = sys
-            .parameters
-            .iter()
-            .enumerate()
-            .map(|(j, p)| (p.name.as_str(), j))
-            .collect();
+        // Name lookups only when names are given: hashing every name of a large model
+        // costs more than the rest of the set-up.
+        let by_name = !(values.is_empty() && guesses.is_empty());
+        let var_index: HashMap<&str, usize> = if by_name {
+            sys.variables
+                .iter()
+                .enumerate()
+                .map(|(i, v)| (v.name.as_str(), i))
+                .collect()
+        } else {
+            HashMap::default()
+        };
+        let param_index: HashMap<&str, usize> = if by_name {
+            sys.parameters
+                .iter()
+                .enumerate()
+                .map(|(j, p)| (p.name.as_str(), j))
+                .collect()
+        } else {
+            HashMap::default()
+        };
         let unknown = |name: &str| {
             let candidates = sys
                 .variables
