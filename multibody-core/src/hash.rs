@@ -69,3 +69,20 @@ pub type HashMap<K, V> = std::collections::HashMap<K, V, FastBuild>;
 
 /// A hash set with [`FastHasher`] (build with `HashSet::default()`).
 pub type HashSet<K> = std::collections::HashSet<K, FastBuild>;
+
+/// A hash for a `hashbrown` table of items built from other items (expression nodes
+/// from their operands, instructions from their registers), placing each by its
+/// `anchor` (the newest operand's index) rather than by content: items built from
+/// nearby items sit in nearby buckets, so a pass over one part of a large model finds
+/// its entries in cache, where a content-only bucket would miss it every time. The
+/// content hash's high half `high` gives hashbrown's tag (the top seven bits) and
+/// chooses among four buckets per anchor. Items without an anchor are placed by
+/// `high`. Equal items must have equal anchors.
+#[inline]
+pub fn anchored_hash(anchor: Option<u32>, high: u32) -> u64 {
+    let bucket = match anchor {
+        Some(a) => a.wrapping_mul(4) | (high & 3),
+        None => high,
+    };
+    (u64::from(high) << 32) | u64::from(bucket)
+}

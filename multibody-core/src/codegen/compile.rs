@@ -10,9 +10,24 @@ use hashbrown::HashTable;
 
 /// Hash of an instruction for value numbering.
 #[inline]
+/// Placed by the newest operand register (see [`crate::hash::anchored_hash`]).
 fn hash_op(op: &Op) -> u64 {
     use std::hash::BuildHasher;
-    crate::hash::FastBuild::default().hash_one(op)
+    let high = (crate::hash::FastBuild::default().hash_one(op) >> 32) as u32;
+    let anchor = match *op {
+        Op::Neg(a) | Op::Scale(_, a) | Op::PowI(a, _) | Op::F1(_, a) => Some(a),
+        Op::Add(a, b)
+        | Op::Sub(a, b)
+        | Op::Mul(a, b)
+        | Op::Div(a, b)
+        | Op::AddScaled(a, _, b)
+        | Op::Pow(a, b)
+        | Op::F2(_, a, b)
+        | Op::Cmp(_, a, b) => Some(a.max(b)),
+        Op::Select(c, a, b) => Some(c.max(a).max(b)),
+        Op::Const(_) | Op::Input(_) | Op::LinearSolve(_) | Op::LsPart => None,
+    };
+    crate::hash::anchored_hash(anchor, high)
 }
 use super::{CodegenError, Stmt};
 

@@ -9,7 +9,7 @@ use super::{Cmp, Func1, Func2, Id, Node, Operands};
 /// Hash-consed expression storage. Every constructor simplifies: constants fold,
 /// neutral elements vanish, sums and products are flattened and ordered, and like terms
 /// and like factors are collected.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Arena {
     nodes: Vec<Node>,
     /// The terms of every sum node, each node's a contiguous range.
@@ -25,6 +25,13 @@ pub struct Arena {
     var_leaf: Vec<[u32; 2]>,
     /// Direct index of the leaves `Param(i)` (`u32::MAX` when absent).
     param_leaf: Vec<u32>,
+    /// Work space of `linear_combination` (kept to reuse its allocations: small
+    /// allocations freed by the million make the allocator slow on large models).
+    combine_terms: Vec<(Id, f64)>,
+    /// The merged terms of `linear_combination`.
+    combine_merged: Vec<(u64, Id)>,
+    /// Work stacks of substitution.
+    pub(super) subst_work: super::subst::SubstWork,
 }
 
 /// Hash of a node by content (the operands of sums and products, not their ranges).
@@ -34,6 +41,31 @@ fn hash_node(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> u64 {
         Node::Sum(ts, c) => b.hash_one((0u8, &terms[ts.range()], c)),
         Node::Prod(fs) => b.hash_one((1u8, &factors[fs.range()])),
         _ => b.hash_one(n),
+    }
+}
+
+/// A copy of `v` with room to grow by half: a cloned arena is usually extended (the
+/// initialization adds its own equations), and growing a full vector would copy it
+/// again.
+fn with_headroom<T: Copy>(v: &[T]) -> Vec<T> {
+    let mut out = Vec::with_capacity(v.len() + v.len() / 2 + 16);
+    out.extend_from_slice(v);
+    out
+}
+
+impl Clone for Arena {
+    fn clone(&self) -> Self {
+        Arena {
+            nodes: with_headroom(&self.nodes),
+            term_pool: with_headroom(&self.term_pool),
+            factor_pool: with_headroom(&self.factor_pool),
+            table: self.table.clone(),
+            var_leaf: self.var_leaf.clone(),
+            param_leaf: with_headroom(&self.param_leaf),
+            combine_terms: Vec::new(),
+            combine_merged: Vec::new(),
+            subst_work: Default::default(),
+        }
     }
 }
 
@@ -56,19 +88,12 @@ fn newest_operand(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> Optio
     Some(id.0)
 }
 
-/// The table hash of a node: hashbrown's tag (the top seven bits) comes from the
-/// content hash's high half `high`; the bucket comes from the node's newest operand
-/// (four buckets per operand id, two bits of `high` choosing among them), so nodes
-/// built from nearby nodes sit in nearby buckets. Work on one part of a large model
-/// then finds its table entries in cache, where a content-only bucket would miss it
-/// every time. Equal nodes have equal operands, so they still meet in one bucket.
-/// Nodes without operands (constants) take their bucket from `high`.
+/// The table hash of a node: its bucket comes from its newest operand (see
+/// [`crate::hash::anchored_hash`]), so nodes built from nearby nodes sit in nearby
+/// buckets and work on one part of a large model finds its entries in cache. Equal
+/// nodes have equal operands, so they still meet in one bucket.
 fn table_hash(anchor: Option<u32>, high: u32) -> u64 {
-    let bucket = match anchor {
-        Some(a) => a.wrapping_mul(4) | (high & 3),
-        None => high,
-    };
-    (u64::from(high) << 32) | u64::from(bucket)
+    crate::hash::anchored_hash(anchor, high)
 }
 
 /// Entry `i` of a direct index, growing it (doubling, filled with `empty`) when short.
@@ -106,6 +131,9 @@ impl Arena {
             table: HashTable::new(),
             var_leaf: Vec::new(),
             param_leaf: Vec::new(),
+            combine_terms: Vec::new(),
+            combine_merged: Vec::new(),
+            subst_work: Default::default(),
         };
         a.constant(0.0);
         a.constant(1.0);
@@ -293,8 +321,11 @@ impl Arena {
 
     /// `sum(coefficient * term) + constant`, simplified.
     pub fn linear_combination(&mut self, constant: f64, terms: &[(f64, Id)]) -> Id {
+        let mut acc = std::mem::take(&mut self.combine_terms);
+        let mut merged = std::mem::take(&mut self.combine_merged);
+        acc.clear();
+        merged.clear();
         let mut c0 = constant;
-        let mut acc: Vec<(Id, f64)> = Vec::with_capacity(terms.len() + 2);
         for &(k, t) in terms {
             if k == 0.0 {
                 continue;
@@ -311,7 +342,6 @@ impl Arena {
             }
         }
         acc.sort_by_key(|&(id, _)| id);
-        let mut merged: Vec<(u64, Id)> = Vec::with_capacity(acc.len());
         let mut i = 0;
         while i < acc.len() {
             let id = acc[i].0;
@@ -324,14 +354,17 @@ impl Arena {
                 merged.push((k.to_bits(), id));
             }
         }
-        if merged.is_empty() {
-            return self.constant(c0);
-        }
-        if merged.len() == 1 && c0 == 0.0 && f64::from_bits(merged[0].0) == 1.0 {
-            return merged[0].1;
-        }
-        let c0 = if c0 == 0.0 { 0.0 } else { c0 };
-        self.intern_sum(&merged, c0.to_bits())
+        let result = if merged.is_empty() {
+            self.constant(c0)
+        } else if merged.len() == 1 && c0 == 0.0 && f64::from_bits(merged[0].0) == 1.0 {
+            merged[0].1
+        } else {
+            let c0 = if c0 == 0.0 { 0.0 } else { c0 };
+            self.intern_sum(&merged, c0.to_bits())
+        };
+        self.combine_terms = acc;
+        self.combine_merged = merged;
+        result
     }
 
     /// `a + b`.

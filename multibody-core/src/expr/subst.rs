@@ -6,6 +6,15 @@ use std::cell::RefCell;
 
 use super::{Arena, Id, Node, NodeMap, NodeTable, is_leaf};
 
+/// Work stacks of substitution: the rebuilt operands of the sums and products being
+/// rebuilt, one above the other (kept in the arena to reuse their allocations).
+#[derive(Debug, Default)]
+pub(crate) struct SubstWork {
+    terms: Vec<(f64, Id)>,
+    factors: Vec<(Id, i32)>,
+    powers: Vec<Id>,
+}
+
 thread_local! {
     /// The stack and scan list of [`Arena::walk`], reused from walk to walk.
     static WALK_BUFFERS: RefCell<(Vec<Id>, Vec<Id>)> = const { RefCell::new((Vec::new(), Vec::new())) };
@@ -17,7 +26,7 @@ impl Arena {
     /// derivative of its image, unless `der(x)` has an entry of its own.
     pub fn substitute(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
         let mut memo = HashMap::default();
-        self.subst_rec(e, map, &mut memo, false)
+        self.subst_entry(e, map, &mut memo, false)
     }
 
     /// Like [`Arena::substitute`], but `der(x)` nodes are leaves of their own: they are
@@ -25,7 +34,7 @@ impl Arena {
     /// system, where `x` and `der(x)` are distinct unknowns).
     pub fn substitute_leaves(&mut self, e: Id, map: &HashMap<Id, Id>) -> Id {
         let mut memo = HashMap::default();
-        self.subst_rec(e, map, &mut memo, true)
+        self.subst_entry(e, map, &mut memo, true)
     }
 
     /// [`Arena::substitute_leaves`] with a memo shared across calls. The map and the
@@ -36,7 +45,7 @@ impl Arena {
         map: &impl NodeTable,
         memo: &mut impl NodeTable,
     ) -> Id {
-        self.subst_rec(e, map, memo, true)
+        self.subst_entry(e, map, memo, true)
     }
 
     /// [`Arena::substitute`] with a memo shared across calls (for many expressions
@@ -48,7 +57,21 @@ impl Arena {
         map: &impl NodeTable,
         memo: &mut impl NodeTable,
     ) -> Id {
-        self.subst_rec(e, map, memo, false)
+        self.subst_entry(e, map, memo, false)
+    }
+
+    /// Runs the substitution with the arena's work space (taken for the call).
+    fn subst_entry<M: NodeTable, T: NodeTable>(
+        &mut self,
+        e: Id,
+        map: &M,
+        memo: &mut T,
+        opaque: bool,
+    ) -> Id {
+        let mut work = std::mem::take(&mut self.subst_work);
+        let r = self.subst_rec(e, map, memo, opaque, &mut work);
+        self.subst_work = work;
+        r
     }
 
     fn subst_rec<M: NodeTable, T: NodeTable>(
@@ -57,6 +80,7 @@ impl Arena {
         map: &M,
         memo: &mut T,
         opaque: bool,
+        work: &mut SubstWork,
     ) -> Id {
         if let Some(r) = map.get(e) {
             return r;
@@ -73,72 +97,83 @@ impl Arena {
         let r = match *self.node(e) {
             Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => e,
             Node::Der(x) => {
-                let nx = self.subst_rec(x, map, memo, opaque);
+                let nx = self.subst_rec(x, map, memo, opaque, work);
                 if nx == x { e } else { self.der(nx) }
             }
             Node::Sum(ts, c) => {
-                let len = ts.len();
-                let mut terms = Vec::with_capacity(len);
+                // New terms go on the work stack above those of the sums being
+                // rebuilt around this one.
+                let base = work.terms.len();
                 let mut changed = false;
-                for i in 0..len {
+                for i in 0..ts.len() {
                     // The range stays valid while the pools grow.
                     let (k, t) = self.terms(ts)[i];
-                    let nt = self.subst_rec(t, map, memo, opaque);
+                    let nt = self.subst_rec(t, map, memo, opaque, work);
                     changed |= nt != t;
-                    terms.push((f64::from_bits(k), nt));
+                    work.terms.push((f64::from_bits(k), nt));
                 }
-                if changed {
-                    self.linear_combination(f64::from_bits(c), &terms)
+                let r = if changed {
+                    self.linear_combination(f64::from_bits(c), &work.terms[base..])
                 } else {
                     e
-                }
+                };
+                work.terms.truncate(base);
+                r
             }
             Node::Prod(fs) => {
-                let len = fs.len();
-                let mut factors = Vec::with_capacity(len);
+                let base = work.factors.len();
                 let mut changed = false;
-                for i in 0..len {
+                for i in 0..fs.len() {
                     let (b, n) = self.factors(fs)[i];
-                    let nb = self.subst_rec(b, map, memo, opaque);
+                    let nb = self.subst_rec(b, map, memo, opaque, work);
                     changed |= nb != b;
-                    factors.push((nb, n));
+                    work.factors.push((nb, n));
                 }
-                if changed {
-                    let ps: Vec<Id> = factors.iter().map(|&(b, n)| self.powi(b, n)).collect();
-                    self.product(&ps)
+                let r = if changed {
+                    let powers = work.powers.len();
+                    for j in base..work.factors.len() {
+                        let (b, n) = work.factors[j];
+                        let p = self.powi(b, n);
+                        work.powers.push(p);
+                    }
+                    let r = self.product(&work.powers[powers..]);
+                    work.powers.truncate(powers);
+                    r
                 } else {
                     e
-                }
+                };
+                work.factors.truncate(base);
+                r
             }
             Node::Pow(a, b) => {
                 let (na, nb) = (
-                    self.subst_rec(a, map, memo, opaque),
-                    self.subst_rec(b, map, memo, opaque),
+                    self.subst_rec(a, map, memo, opaque, work),
+                    self.subst_rec(b, map, memo, opaque, work),
                 );
                 self.pow(na, nb)
             }
             Node::F1(f, a) => {
-                let na = self.subst_rec(a, map, memo, opaque);
+                let na = self.subst_rec(a, map, memo, opaque, work);
                 self.f1(f, na)
             }
             Node::F2(f, a, b) => {
                 let (na, nb) = (
-                    self.subst_rec(a, map, memo, opaque),
-                    self.subst_rec(b, map, memo, opaque),
+                    self.subst_rec(a, map, memo, opaque, work),
+                    self.subst_rec(b, map, memo, opaque, work),
                 );
                 self.f2(f, na, nb)
             }
             Node::Cmp(op, a, b) => {
                 let (na, nb) = (
-                    self.subst_rec(a, map, memo, opaque),
-                    self.subst_rec(b, map, memo, opaque),
+                    self.subst_rec(a, map, memo, opaque, work),
+                    self.subst_rec(b, map, memo, opaque, work),
                 );
                 self.cmp(op, na, nb)
             }
             Node::If(c, a, b) => {
-                let nc = self.subst_rec(c, map, memo, opaque);
-                let na = self.subst_rec(a, map, memo, opaque);
-                let nb = self.subst_rec(b, map, memo, opaque);
+                let nc = self.subst_rec(c, map, memo, opaque, work);
+                let na = self.subst_rec(a, map, memo, opaque, work);
+                let nb = self.subst_rec(b, map, memo, opaque, work);
                 self.ite(nc, na, nb)
             }
         };

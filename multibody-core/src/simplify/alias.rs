@@ -107,11 +107,14 @@ pub(crate) fn is_parameter_expression(arena: &Arena, e: Id) -> bool {
 struct SignedSets {
     parent: Vec<u32>,
     sign: Vec<f64>,
+    /// The path of the last `find` (kept to reuse its allocation).
+    path: Vec<u32>,
 }
 
 impl SignedSets {
     fn find(&mut self, x: u32) -> (u32, f64) {
-        let mut path = Vec::new();
+        let mut path = std::mem::take(&mut self.path);
+        path.clear();
         let mut cur = x;
         while self.parent[cur as usize] != cur {
             path.push(cur);
@@ -126,6 +129,7 @@ impl SignedSets {
             }
             self.parent[p as usize] = root;
         }
+        self.path = path;
         (
             root,
             if x == root {
@@ -145,6 +149,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     let mut sets = SignedSets {
         parent: (0..nv as u32).collect(),
         sign: vec![1.0; nv],
+        path: Vec::new(),
     };
     let mut constant: Vec<Option<Id>> = vec![None; nv];
     let mut removed = vec![false; ne];
