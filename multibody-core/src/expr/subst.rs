@@ -185,6 +185,13 @@ impl Arena {
     /// `der(x)` is a leaf of its own; `x` is not listed for it.
     pub fn leaves(&self, e: Id) -> Vec<Id> {
         let mut out = Vec::new();
+        self.leaves_into(e, &mut out);
+        out
+    }
+
+    /// [`Arena::leaves`] into `out` (cleared first), for callers that reuse one buffer.
+    pub fn leaves_into(&self, e: Id, out: &mut Vec<Id>) {
+        out.clear();
         self.walk(e, &mut |x, n| {
             if is_leaf(n) {
                 out.push(x);
@@ -195,7 +202,6 @@ impl Arena {
         });
         out.sort_unstable();
         out.dedup();
-        out
     }
 
     /// Whether `leaf` occurs in `e`.

@@ -197,12 +197,10 @@ pub fn causalize(
 ) -> Result<Schedule, Singular> {
     let index = IdIndex::new(unknowns);
     let mut g = BipartiteGraph::new(unknowns.len());
+    let mut leaves = Vec::new();
     for &r in equations {
-        let vars: Vec<usize> = arena
-            .leaves(r)
-            .into_iter()
-            .filter_map(|l| index.get(l))
-            .collect();
+        arena.leaves_into(r, &mut leaves);
+        let vars: Vec<usize> = leaves.iter().filter_map(|&l| index.get(l)).collect();
         g.add_equation(vars);
     }
     let m = maximum_matching(&g, None, None);
@@ -220,8 +218,7 @@ pub fn causalize(
     }
     let mut out = Schedule::default();
     for block in blt(&g, &m) {
-        let eqs: Vec<usize> = block.eqs.clone();
-        let vars: Vec<usize> = block.vars.clone();
+        let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {
             scalar_block(
                 arena,

@@ -136,13 +136,10 @@ impl SlotTable<'_> {
 /// Variables of a residual as slots (`Var` and `der` leaves; parameters and time are
 /// known).
 pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {
-    let leaves: Vec<Id> = table
-        .arena
-        .leaves(e)
-        .into_iter()
-        .filter(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)))
-        .collect();
-    let mut out: Vec<usize> = leaves.into_iter().map(|l| table.slot(l)).collect();
+    let mut leaves = Vec::new();
+    table.arena.leaves_into(e, &mut leaves);
+    leaves.retain(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)));
+    let mut out: Vec<usize> = leaves.iter().map(|&l| table.slot(l)).collect();
     out.sort_unstable();
     out.dedup();
     out

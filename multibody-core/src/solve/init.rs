@@ -137,16 +137,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     }
 
     // Structure: mandatory equations must be matchable.
-    let incidence = |arena: &crate::expr::Arena, r: Id| -> Vec<usize> {
-        arena
-            .leaves(r)
-            .into_iter()
-            .filter_map(|l| index.get(l))
-            .collect()
-    };
     let mut graph = BipartiteGraph::new(unknowns.len());
+    let mut leaves = Vec::new();
     for (r, _) in &eqs {
-        graph.add_equation(incidence(&arena, *r));
+        arena.leaves_into(*r, &mut leaves);
+        graph.add_equation(leaves.iter().filter_map(|&l| index.get(l)).collect());
     }
     let m = maximum_matching(&graph, None, None);
     if m.size() < eqs.len() {
