@@ -196,7 +196,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         }
         let slot = &sys.slots[s];
         let k = index.get(slot.leaf).expect("a slot is an unknown");
-        graph.eq_vars.push(vec![k]);
+        graph.eq_vars.push(&[k]);
         let e_new = graph.eq_vars.len() - 1;
         eq_to_var.push(None);
         if augment(&graph.eq_vars, e_new, &mut var_to_eq, &mut eq_to_var) {
@@ -425,7 +425,7 @@ fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Are
 
 /// Augments the matching along an alternating path from the unmatched equation `root`.
 fn augment(
-    adj: &[Vec<usize>],
+    adj: &crate::structure::Rows,
     root: usize,
     var_to_eq: &mut [Option<usize>],
     eq_to_var: &mut [Option<usize>],

@@ -275,7 +275,7 @@ fn select_with_companions(
 fn select<'a>(
     equations: &[usize],
     candidates: &[usize],
-    vars_of: impl Fn(usize) -> &'a Vec<usize>,
+    vars_of: impl Fn(usize) -> &'a [usize],
 ) -> Vec<usize> {
     use std::collections::VecDeque;
 

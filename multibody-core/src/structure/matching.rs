@@ -4,7 +4,7 @@
 //! a typical model in O(E); Hopcroft–Karp with an iterative, pointer-based DFS
 //! then completes it in O(E sqrt V) worst case.
 
-use super::BipartiteGraph;
+use super::{BipartiteGraph, Rows};
 use std::collections::VecDeque;
 
 /// A matching between equations and variables.
@@ -36,10 +36,10 @@ fn candidate_lists(
     g: &BipartiteGraph,
     var_allowed: Option<&[bool]>,
     var_preference: Option<&[f64]>,
-) -> Vec<Vec<usize>> {
+) -> Rows {
     let allowed = |v: usize| var_allowed.is_none_or(|a| a.get(v).copied().unwrap_or(false));
     let mut var_deg = vec![0usize; g.n_vars];
-    for vars in &g.eq_vars {
+    for vars in g.eq_vars.iter() {
         for &v in vars {
             if allowed(v) {
                 var_deg[v] += 1;
@@ -51,25 +51,26 @@ fn candidate_lists(
             .and_then(|p| p.get(v).copied())
             .unwrap_or(0.0)
     };
-    g.eq_vars
-        .iter()
-        .map(|vars| {
-            let mut c: Vec<usize> = vars.iter().copied().filter(|&v| allowed(v)).collect();
-            c.sort_by(|&a, &b| {
-                pref(b)
-                    .total_cmp(&pref(a))
-                    .then(var_deg[a].cmp(&var_deg[b]))
-                    .then(a.cmp(&b))
-            });
-            c
-        })
-        .collect()
+    let mut out = Rows::new();
+    let mut c: Vec<usize> = Vec::new();
+    for vars in g.eq_vars.iter() {
+        c.clear();
+        c.extend(vars.iter().copied().filter(|&v| allowed(v)));
+        c.sort_by(|&a, &b| {
+            pref(b)
+                .total_cmp(&pref(a))
+                .then(var_deg[a].cmp(&var_deg[b]))
+                .then(a.cmp(&b))
+        });
+        out.push(&c);
+    }
+    out
 }
 
 /// Greedy initial matching: equations in order of increasing candidate count
 /// (ties by index), each takes its first free candidate.
-fn greedy(adj: &[Vec<usize>], m: &mut Matching) {
-    let max_deg = adj.iter().map(Vec::len).max().unwrap_or(0);
+fn greedy(adj: &Rows, m: &mut Matching) {
+    let max_deg = adj.iter().map(<[usize]>::len).max().unwrap_or(0);
     let mut buckets: Vec<Vec<usize>> = vec![Vec::new(); max_deg + 1];
     for (e, c) in adj.iter().enumerate() {
         buckets[c.len()].push(e);
@@ -83,7 +84,7 @@ fn greedy(adj: &[Vec<usize>], m: &mut Matching) {
 }
 
 /// BFS layering from the free equations. Returns true if some free variable is reachable.
-fn bfs_layers(adj: &[Vec<usize>], m: &Matching, dist: &mut [usize]) -> bool {
+fn bfs_layers(adj: &Rows, m: &Matching, dist: &mut [usize]) -> bool {
     let mut queue = VecDeque::new();
     for (e, d) in dist.iter_mut().enumerate() {
         if m.eq_to_var[e].is_none() && !adj[e].is_empty() {
@@ -95,7 +96,7 @@ fn bfs_layers(adj: &[Vec<usize>], m: &Matching, dist: &mut [usize]) -> bool {
     }
     let mut found = false;
     while let Some(e) = queue.pop_front() {
-        for &v in &adj[e] {
+        for &v in adj[e].iter() {
             match m.var_to_eq[v] {
                 None => found = true,
                 Some(w) if dist[w] == INF => {
@@ -111,7 +112,7 @@ fn bfs_layers(adj: &[Vec<usize>], m: &Matching, dist: &mut [usize]) -> bool {
 
 /// Iterative layered DFS from free equation `root`; augments on success.
 fn dfs_augment(
-    adj: &[Vec<usize>],
+    adj: &Rows,
     m: &mut Matching,
     dist: &mut [usize],
     next: &mut [usize],

@@ -17,7 +17,10 @@ pub mod dm;
 pub mod dummy_derivatives;
 pub mod matching;
 pub mod pantelides;
+mod rows;
 pub mod tearing;
+
+pub use rows::Rows;
 
 /// Bipartite incidence: equations (rows) x variables (columns).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -25,7 +28,7 @@ pub struct BipartiteGraph {
     /// Number of variables (columns); every variable index is `< n_vars`.
     pub n_vars: usize,
     /// For each equation, the sorted, deduplicated variables it contains.
-    pub eq_vars: Vec<Vec<usize>>,
+    pub eq_vars: Rows,
 }
 
 impl BipartiteGraph {
@@ -33,7 +36,7 @@ impl BipartiteGraph {
     pub fn new(n_vars: usize) -> Self {
         Self {
             n_vars,
-            eq_vars: Vec::new(),
+            eq_vars: Rows::new(),
         }
     }
 
@@ -44,7 +47,7 @@ impl BipartiteGraph {
         vars.dedup();
         let needed = vars.last().map_or(0, |&last| last + 1);
         self.n_vars = self.n_vars.max(needed);
-        self.eq_vars.push(vars);
+        self.eq_vars.push(&vars);
         self.eq_vars.len() - 1
     }
 
@@ -56,7 +59,7 @@ impl BipartiteGraph {
     /// The transpose: for each variable, the ascending list of equations containing it.
     pub fn var_eqs(&self) -> Vec<Vec<usize>> {
         let mut deg = vec![0usize; self.n_vars];
-        for vars in &self.eq_vars {
+        for vars in self.eq_vars.iter() {
             for &v in vars {
                 deg[v] += 1;
             }
@@ -81,7 +84,7 @@ mod tests {
         assert_eq!(g.add_equation(vec![2, 0, 2]), 0);
         assert_eq!(g.add_equation(vec![1]), 1);
         assert_eq!(g.add_equation(vec![]), 2);
-        assert_eq!(g.eq_vars, vec![vec![0, 2], vec![1], vec![]]);
+        assert_eq!(g.eq_vars.to_vecs(), vec![vec![0, 2], vec![1], vec![]]);
         assert_eq!(g.n_eqs(), 3);
         assert_eq!(g.var_eqs(), vec![vec![0], vec![1], vec![0]]);
     }

@@ -98,7 +98,7 @@ pub fn chain_graph(
         base[v] = b;
     }
     let mut g = BipartiteGraph::new(n);
-    for vars in &graph.eq_vars {
+    for vars in graph.eq_vars.iter() {
         g.add_equation(vars.iter().map(|&v| base[v]).collect());
     }
     (g, base)

@@ -1,0 +1,102 @@
+//! Lists of lists stored flat (compressed rows).
+
+use std::ops::Index;
+
+/// A list of rows of indices stored in one vector with row offsets (compressed sparse
+/// rows). A graph of a large model keeps its rows next to each other, in one
+/// allocation, instead of one heap block per row.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rows {
+    /// Row `i` is `items[offsets[i]..offsets[i + 1]]`.
+    offsets: Vec<usize>,
+    items: Vec<usize>,
+}
+
+impl Default for Rows {
+    fn default() -> Self {
+        Rows::new()
+    }
+}
+
+impl Rows {
+    /// No rows.
+    pub fn new() -> Self {
+        Rows {
+            offsets: vec![0],
+            items: Vec::new(),
+        }
+    }
+
+    /// Appends a row.
+    pub fn push(&mut self, row: &[usize]) {
+        self.items.extend_from_slice(row);
+        self.offsets.push(self.items.len());
+    }
+
+    /// Appends a row made of `row`'s items.
+    pub fn push_iter(&mut self, row: impl IntoIterator<Item = usize>) {
+        self.items.extend(row);
+        self.offsets.push(self.items.len());
+    }
+
+    /// Removes the last row.
+    pub fn pop(&mut self) {
+        if self.offsets.len() > 1 {
+            self.offsets.pop();
+            self.items
+                .truncate(*self.offsets.last().expect("offset 0 stays"));
+        }
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Whether there is no row.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The rows in order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = &[usize]> + '_ {
+        self.offsets.windows(2).map(|w| &self.items[w[0]..w[1]])
+    }
+
+    /// The rows as nested vectors (for tests and messages).
+    pub fn to_vecs(&self) -> Vec<Vec<usize>> {
+        self.iter().map(<[usize]>::to_vec).collect()
+    }
+}
+
+impl Index<usize> for Rows {
+    type Output = [usize];
+
+    #[inline]
+    fn index(&self, i: usize) -> &[usize] {
+        &self.items[self.offsets[i]..self.offsets[i + 1]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_push_pop_and_read_back() {
+        let mut r = Rows::new();
+        assert!(r.is_empty());
+        r.push(&[3, 1]);
+        r.push(&[]);
+        r.push_iter([7, 8, 9]);
+        assert_eq!(r.len(), 3);
+        assert_eq!(&r[0], &[3, 1]);
+        assert!(r[1].is_empty());
+        assert_eq!(r.to_vecs(), vec![vec![3, 1], vec![], vec![7, 8, 9]]);
+        r.pop();
+        assert_eq!(r.to_vecs(), vec![vec![3, 1], vec![]]);
+        r.push(&[5]);
+        assert_eq!(&r[2], &[5]);
+        assert_eq!(r.iter().map(<[usize]>::len).sum::<usize>(), 3);
+    }
+}
