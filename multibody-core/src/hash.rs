@@ -75,13 +75,16 @@ pub type HashSet<K> = std::collections::HashSet<K, FastBuild>;
 /// `anchor` (the newest operand's index) rather than by content: items built from
 /// nearby items sit in nearby buckets, so a pass over one part of a large model finds
 /// its entries in cache, where a content-only bucket would miss it every time. The
-/// content hash's high half `high` gives hashbrown's tag (the top seven bits) and
-/// chooses among four buckets per anchor. Items without an anchor are placed by
-/// `high`. Equal items must have equal anchors.
+/// content hash's high half `high` gives hashbrown's tag (the top seven bits, on
+/// 64-bit targets) and the offset of the bucket within a window of 64 that starts at
+/// four buckets per anchor: items sharing an anchor (`x^2`, `x^3`, `2 x + 1`, ...)
+/// spread over the window instead of piling onto one bucket, while the window stays
+/// a few cache lines. Items without an anchor are placed by `high`. Equal items must
+/// have equal anchors.
 #[inline]
 pub fn anchored_hash(anchor: Option<u32>, high: u32) -> u64 {
     let bucket = match anchor {
-        Some(a) => a.wrapping_mul(4) | (high & 3),
+        Some(a) => a.wrapping_mul(4).wrapping_add(high & 63),
         None => high,
     };
     (u64::from(high) << 32) | u64::from(bucket)

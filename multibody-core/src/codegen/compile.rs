@@ -8,9 +8,9 @@ use super::tape::{LsInfo, Op, SparsePattern, Tape};
 
 use hashbrown::HashTable;
 
-/// Hash of an instruction for value numbering.
+/// Hash of an instruction for value numbering, placing it by its newest operand
+/// register (see [`crate::hash::anchored_hash`]).
 #[inline]
-/// Placed by the newest operand register (see [`crate::hash::anchored_hash`]).
 fn hash_op(op: &Op) -> u64 {
     use std::hash::BuildHasher;
     let high = (crate::hash::FastBuild::default().hash_one(op) >> 32) as u32;
@@ -95,8 +95,8 @@ pub struct TapeBuilder<'a> {
     ops: Vec<Op>,
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
-    /// Registers of the emitted instructions by the instruction's hash (value
-    /// numbering); 4 bytes per entry, the instruction itself is read from `ops`.
+    /// Registers of the emitted instructions, placed by `hash_op` (value numbering);
+    /// 4 bytes per entry, the instruction itself is read from `ops`.
     numbering: HashTable<u32>,
     bound: IdMap,
     memo: IdMap,

@@ -21,9 +21,10 @@ pub struct Arena {
     /// once, in `nodes`, and found here.
     table: HashTable<(u32, u32)>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
-    /// the most frequent lookups skip hashing.
+    /// their only index (they never enter the table).
     var_leaf: Vec<[u32; 2]>,
-    /// Direct index of the leaves `Param(i)` (`u32::MAX` when absent).
+    /// Direct index of the leaves `Param(i)` (`u32::MAX` when absent), their only
+    /// index.
     param_leaf: Vec<u32>,
     /// Work space of `linear_combination` (kept to reuse its allocations: small
     /// allocations freed by the million make the allocator slow on large models).
@@ -44,9 +45,7 @@ fn hash_node(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> u64 {
     }
 }
 
-/// A copy of `v` with room to grow by half: a cloned arena is usually extended (the
-/// initialization adds its own equations), and growing a full vector would copy it
-/// again.
+/// A copy of `v` with room to grow by half (see [`Arena::clone_to_extend`]).
 fn with_headroom<T: Copy>(v: &[T]) -> Vec<T> {
     let mut out = Vec::with_capacity(v.len() + v.len() / 2 + 16);
     out.extend_from_slice(v);
@@ -55,6 +54,25 @@ fn with_headroom<T: Copy>(v: &[T]) -> Vec<T> {
 
 impl Clone for Arena {
     fn clone(&self) -> Self {
+        Arena {
+            nodes: self.nodes.clone(),
+            term_pool: self.term_pool.clone(),
+            factor_pool: self.factor_pool.clone(),
+            table: self.table.clone(),
+            var_leaf: self.var_leaf.clone(),
+            param_leaf: self.param_leaf.clone(),
+            combine_terms: Vec::new(),
+            combine_merged: Vec::new(),
+            subst_work: Default::default(),
+        }
+    }
+}
+
+impl Arena {
+    /// A copy with room for half as many nodes again, for a copy that is about to be
+    /// extended (the initialization adds its own equations to the model's arena): a
+    /// full vector would be copied a second time on its first growth.
+    pub fn clone_to_extend(&self) -> Arena {
         Arena {
             nodes: with_headroom(&self.nodes),
             term_pool: with_headroom(&self.term_pool),
@@ -214,8 +232,14 @@ impl Arena {
 
     /// The node `n`, stored unless an equal one exists. A sum or product candidate has
     /// its operands appended at the end of its pool; they are given back when an equal
-    /// node already holds them.
+    /// node already holds them. Never called for `Var`, `Param` or `der(Var)`: those
+    /// are found through their direct indexes only.
     fn intern_hashed(&mut self, n: Node) -> Id {
+        debug_assert!(
+            !matches!(n, Node::Var(_) | Node::Param(_))
+                && !matches!(n, Node::Der(x) if matches!(self.nodes[x.index()], Node::Var(_))),
+            "leaves with a direct index never enter the table"
+        );
         let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
         let high = (hash_node(&n, terms, factors) >> 32) as u32;
         let h = table_hash(newest_operand(&n, terms, factors), high);
@@ -249,8 +273,8 @@ impl Arena {
         id
     }
 
-    /// Stores `n` as a new node without entering it in the table: for the leaves that
-    /// are only ever found through their direct index.
+    /// Stores `n` as a new node, without entering it in the table (the caller does
+    /// that, or records a leaf in its direct index).
     fn push_node(&mut self, n: Node) -> Id {
         let id = self.nodes.len() as u32;
         self.nodes.push(n);

@@ -17,7 +17,8 @@ pub(crate) struct SubstWork {
 
 thread_local! {
     /// The stack and scan list of [`Arena::walk`], reused from walk to walk.
-    static WALK_BUFFERS: RefCell<(Vec<Id>, Vec<Id>)> = const { RefCell::new((Vec::new(), Vec::new())) };
+    static WALK_BUFFERS: RefCell<(Vec<Id>, Vec<Id>)> =
+        const { RefCell::new((Vec::new(), Vec::new())) };
 }
 
 impl Arena {

@@ -15,6 +15,17 @@ use std::collections::VecDeque;
 use crate::hash::HashMap;
 use crate::model::EquationText;
 
+use crate::codegen::dae::{DaeSpec, Row, compile_dae};
+use crate::expr::{Id, IdIndex, Node};
+use crate::simplify::SimplifiedSystem;
+use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
+use crate::structure::BipartiteGraph;
+use crate::structure::dm::dulmage_mendelsohn;
+use crate::structure::matching::maximum_matching;
+
+use super::error::InitError;
+use super::newton::{NewtonOptions, newton};
+
 /// What an equation of the initialization system is, shown in its error messages
 /// (written out only then).
 enum InitText<'a> {
@@ -38,17 +49,6 @@ impl std::fmt::Display for InitText<'_> {
         }
     }
 }
-
-use crate::codegen::dae::{DaeSpec, Row, compile_dae};
-use crate::expr::{Id, IdIndex, Node};
-use crate::simplify::SimplifiedSystem;
-use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
-use crate::structure::BipartiteGraph;
-use crate::structure::dm::dulmage_mendelsohn;
-use crate::structure::matching::maximum_matching;
-
-use super::error::InitError;
-use super::newton::{NewtonOptions, newton};
 
 /// Numeric inputs of an initialization.
 pub(crate) struct InitInput<'a> {
@@ -84,7 +84,7 @@ pub(crate) struct InitResult {
 pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
     let sys = input.sys;
     let model = sys.name.clone();
-    let mut arena = sys.arena.clone();
+    let mut arena = sys.arena.clone_to_extend();
     let np = sys.parameters.len();
     let nv = sys.variables.len();
     let start_leaf: Vec<Id> = (0..nv).map(|i| arena.param((np + i) as u32)).collect();

@@ -33,12 +33,6 @@ impl Rows {
         self.offsets.push(self.items.len());
     }
 
-    /// Appends a row made of `row`'s items.
-    pub fn push_iter(&mut self, row: impl IntoIterator<Item = usize>) {
-        self.items.extend(row);
-        self.offsets.push(self.items.len());
-    }
-
     /// Removes the last row.
     pub fn pop(&mut self) {
         if self.offsets.len() > 1 {
@@ -88,7 +82,7 @@ mod tests {
         assert!(r.is_empty());
         r.push(&[3, 1]);
         r.push(&[]);
-        r.push_iter([7, 8, 9]);
+        r.push(&[7, 8, 9]);
         assert_eq!(r.len(), 3);
         assert_eq!(&r[0], &[3, 1]);
         assert!(r[1].is_empty());
