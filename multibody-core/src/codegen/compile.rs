@@ -8,28 +8,21 @@ use super::tape::{LsInfo, Op, SparsePattern, Tape};
 
 use hashbrown::HashTable;
 
+use super::{CodegenError, Stmt};
+
 /// Hash of an instruction for value numbering, placing it by its newest operand
 /// register (see [`crate::hash::anchored_hash`]).
 #[inline]
 fn hash_op(op: &Op) -> u64 {
     use std::hash::BuildHasher;
     let high = (crate::hash::FastBuild::default().hash_one(op) >> 32) as u32;
-    let anchor = match *op {
-        Op::Neg(a) | Op::Scale(_, a) | Op::PowI(a, _) | Op::F1(_, a) => Some(a),
-        Op::Add(a, b)
-        | Op::Sub(a, b)
-        | Op::Mul(a, b)
-        | Op::Div(a, b)
-        | Op::AddScaled(a, _, b)
-        | Op::Pow(a, b)
-        | Op::F2(_, a, b)
-        | Op::Cmp(_, a, b) => Some(a.max(b)),
-        Op::Select(c, a, b) => Some(c.max(a).max(b)),
-        Op::Const(_) | Op::Input(_) | Op::LinearSolve(_) | Op::LsPart => None,
-    };
+    // A linear solve's operands are in a side table; it is never numbered anyway.
+    let mut anchor = None;
+    if !matches!(op, Op::LinearSolve(_)) {
+        op.for_each_operand(&[], |r| anchor = Some(anchor.map_or(r, |a: u32| a.max(r))));
+    }
     crate::hash::anchored_hash(anchor, high)
 }
-use super::{CodegenError, Stmt};
 
 /// A hash map with the fast hasher.
 pub(crate) type FastMap<K, V> = crate::hash::HashMap<K, V>;

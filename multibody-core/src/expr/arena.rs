@@ -4,6 +4,8 @@ use std::hash::BuildHasher;
 
 use hashbrown::HashTable;
 
+use crate::hash::anchored_hash;
+
 use super::{Cmp, Func1, Func2, Id, Node, Operands};
 
 /// Hash-consed expression storage. Every constructor simplifies: constants fold,
@@ -16,8 +18,10 @@ pub struct Arena {
     term_pool: Vec<(u64, Id)>,
     /// The factors of every product node, each node's a contiguous range.
     factor_pool: Vec<(Id, i32)>,
-    /// Node ids by hash (see `table_hash`), each with the high half of its node's
-    /// content hash. Every node except the leaves with a direct index below is stored
+    /// Node ids, placed by their newest operand ([`crate::hash::anchored_hash`]: work
+    /// on one part of a large model finds its entries in cache; equal nodes have equal
+    /// operands, so they still meet), each with the high half of its node's content
+    /// hash. Every node except the leaves with a direct index below is stored
     /// once, in `nodes`, and found here.
     table: HashTable<(u32, u32)>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
@@ -45,26 +49,17 @@ fn hash_node(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> u64 {
     }
 }
 
-/// A copy of `v` with room to grow by half (see [`Arena::clone_to_extend`]).
-fn with_headroom<T: Copy>(v: &[T]) -> Vec<T> {
-    let mut out = Vec::with_capacity(v.len() + v.len() / 2 + 16);
+/// A copy of `v`, with room for half as many entries again when `headroom` is set.
+fn copy_of<T: Copy>(v: &[T], headroom: bool) -> Vec<T> {
+    let extra = if headroom { v.len() / 2 + 16 } else { 0 };
+    let mut out = Vec::with_capacity(v.len() + extra);
     out.extend_from_slice(v);
     out
 }
 
 impl Clone for Arena {
     fn clone(&self) -> Self {
-        Arena {
-            nodes: self.nodes.clone(),
-            term_pool: self.term_pool.clone(),
-            factor_pool: self.factor_pool.clone(),
-            table: self.table.clone(),
-            var_leaf: self.var_leaf.clone(),
-            param_leaf: self.param_leaf.clone(),
-            combine_terms: Vec::new(),
-            combine_merged: Vec::new(),
-            subst_work: Default::default(),
-        }
+        self.copy(false)
     }
 }
 
@@ -73,13 +68,18 @@ impl Arena {
     /// extended (the initialization adds its own equations to the model's arena): a
     /// full vector would be copied a second time on its first growth.
     pub fn clone_to_extend(&self) -> Arena {
+        self.copy(true)
+    }
+
+    /// A copy (work spaces start empty), with or without room to grow.
+    fn copy(&self, headroom: bool) -> Arena {
         Arena {
-            nodes: with_headroom(&self.nodes),
-            term_pool: with_headroom(&self.term_pool),
-            factor_pool: with_headroom(&self.factor_pool),
+            nodes: copy_of(&self.nodes, headroom),
+            term_pool: copy_of(&self.term_pool, headroom),
+            factor_pool: copy_of(&self.factor_pool, headroom),
             table: self.table.clone(),
             var_leaf: self.var_leaf.clone(),
-            param_leaf: with_headroom(&self.param_leaf),
+            param_leaf: copy_of(&self.param_leaf, headroom),
             combine_terms: Vec::new(),
             combine_merged: Vec::new(),
             subst_work: Default::default(),
@@ -104,14 +104,6 @@ fn newest_operand(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> Optio
         Node::Prod(fs) => factors[fs.range()].iter().map(|&(b, _)| b).max()?,
     };
     Some(id.0)
-}
-
-/// The table hash of a node: its bucket comes from its newest operand (see
-/// [`crate::hash::anchored_hash`]), so nodes built from nearby nodes sit in nearby
-/// buckets and work on one part of a large model finds its entries in cache. Equal
-/// nodes have equal operands, so they still meet in one bucket.
-fn table_hash(anchor: Option<u32>, high: u32) -> u64 {
-    crate::hash::anchored_hash(anchor, high)
 }
 
 /// Entry `i` of a direct index, growing it (doubling, filled with `empty`) when short.
@@ -242,7 +234,7 @@ impl Arena {
         );
         let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
         let high = (hash_node(&n, terms, factors) >> 32) as u32;
-        let h = table_hash(newest_operand(&n, terms, factors), high);
+        let h = anchored_hash(newest_operand(&n, terms, factors), high);
         let nodes = &self.nodes;
         // Equal by content: the operands of a stored sum or product are compared, not
         // its range in the pool.
@@ -268,7 +260,7 @@ impl Arena {
         // Growth re-reads each entry's node: in table order, which is nearly id order.
         let (nodes, terms, factors) = (&self.nodes, &self.term_pool, &self.factor_pool);
         self.table.insert_unique(h, (id.0, high), |&(i, hi)| {
-            table_hash(newest_operand(&nodes[i as usize], terms, factors), hi)
+            anchored_hash(newest_operand(&nodes[i as usize], terms, factors), hi)
         });
         id
     }

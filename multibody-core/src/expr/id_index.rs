@@ -1,41 +1,69 @@
-//! A dense index from node ids to positions in a list.
+//! Dense maps keyed by node id: a vector indexed by id instead of a hash map.
 
 use super::Id;
+
+/// A `u32` per id (`u32::MAX` when absent), growing (doubling) on insertion: the
+/// storage of [`IdIndex`] and [`NodeMap`](super::NodeMap).
+#[derive(Clone, Debug, Default)]
+pub(super) struct DenseU32(Vec<u32>);
+
+impl DenseU32 {
+    const NONE: u32 = u32::MAX;
+
+    /// The value of `id`, if set.
+    #[inline]
+    pub(super) fn get(&self, id: Id) -> Option<u32> {
+        match self.0.get(id.index()) {
+            Some(&v) if v != Self::NONE => Some(v),
+            _ => None,
+        }
+    }
+
+    /// Sets the value of `id`.
+    #[inline]
+    pub(super) fn insert(&mut self, id: Id, v: u32) {
+        let i = id.index();
+        if i >= self.0.len() {
+            self.0.resize((i + 1).max(2 * self.0.len()), Self::NONE);
+        }
+        self.0[i] = v;
+    }
+
+    /// Forgets every value.
+    pub(super) fn clear(&mut self) {
+        self.0.clear();
+    }
+}
 
 /// The position of each id of a list, looked up by the id itself (a vector indexed by
 /// id, not a hash map): ids made for one part of a model lie close together, so
 /// lookups stay in cache where hashed ones would not. Memory is one `u32` per id up to
 /// the largest listed.
 #[derive(Clone, Debug, Default)]
-pub struct IdIndex(Vec<u32>);
+pub struct IdIndex(DenseU32);
 
 impl IdIndex {
     /// The index of `ids`; an id listed twice has its last position.
     pub fn new(ids: &[Id]) -> Self {
-        let len = ids.iter().map(|id| id.index() + 1).max().unwrap_or(0);
-        let mut slots = vec![u32::MAX; len];
-        for (k, id) in ids.iter().enumerate() {
-            slots[id.index()] = k as u32;
+        let mut index = IdIndex::default();
+        if let Some(last) = ids.iter().max() {
+            index.insert(*last, 0); // sizes the vector once
         }
-        IdIndex(slots)
+        for (k, &id) in ids.iter().enumerate() {
+            index.insert(id, k);
+        }
+        index
     }
 
     /// Lists `id` at position `k` (growing the index when `id` is beyond it).
     pub fn insert(&mut self, id: Id, k: usize) {
-        let i = id.index();
-        if i >= self.0.len() {
-            self.0.resize((i + 1).max(2 * self.0.len()), u32::MAX);
-        }
-        self.0[i] = k as u32;
+        self.0.insert(id, k as u32);
     }
 
     /// The position of `id`, if listed.
     #[inline]
     pub fn get(&self, id: Id) -> Option<usize> {
-        match self.0.get(id.index()) {
-            Some(&k) if k != u32::MAX => Some(k as usize),
-            _ => None,
-        }
+        self.0.get(id).map(|k| k as usize)
     }
 
     /// Whether `id` is listed.

@@ -3,6 +3,7 @@
 use crate::hash::HashMap;
 
 use super::Id;
+use super::id_index::DenseU32;
 
 /// A map from nodes to nodes, as substitution reads its map and memo: a hash map for
 /// small ones, a [`NodeMap`] for those that cover much of a large arena.
@@ -31,31 +32,24 @@ impl NodeTable for HashMap<Id, Id> {
 /// key. Used as the memo of [`Arena::import`](super::Arena::import) and of substitutions
 /// over a whole model.
 #[derive(Clone, Debug, Default)]
-pub struct NodeMap(Vec<u32>);
+pub struct NodeMap(DenseU32);
 
 impl NodeMap {
     /// An empty map.
     pub fn new() -> Self {
-        NodeMap(Vec::new())
+        NodeMap(DenseU32::default())
     }
 
     /// The image of `e`, if recorded.
     #[inline]
     pub fn get(&self, e: Id) -> Option<Id> {
-        match self.0.get(e.index()) {
-            Some(&r) if r != u32::MAX => Some(Id(r)),
-            _ => None,
-        }
+        self.0.get(e).map(Id)
     }
 
     /// Records `r` as the image of `e`.
     #[inline]
     pub fn insert(&mut self, e: Id, r: Id) {
-        let i = e.index();
-        if i >= self.0.len() {
-            self.0.resize((i + 1).max(self.0.len() * 2), u32::MAX);
-        }
-        self.0[i] = r.0;
+        self.0.insert(e, r.0);
     }
 
     /// Forgets every entry.

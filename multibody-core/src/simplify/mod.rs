@@ -195,7 +195,11 @@ pub fn structural_simplify_with(
         &mut temps,
     )
     .map_err(|s| {
-        let name_of = |l: &Id| reduced.slots[reduced.slot_of[l]].name.clone();
+        let name_of = |&l: &Id| {
+            reduced.slots[reduced.slot_of.get(l).expect("a slot")]
+                .name
+                .clone()
+        };
         SimplifyError::singular(
             &name,
             s.over_equations
@@ -296,8 +300,8 @@ pub fn structural_simplify_with(
             names: &|id| {
                 reduced
                     .slot_of
-                    .get(&id)
-                    .map(|&s| reduced.slots[s].name.clone())
+                    .get(id)
+                    .map(|s| reduced.slots[s].name.clone())
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },

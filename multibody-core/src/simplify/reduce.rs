@@ -40,7 +40,8 @@ pub struct ReducedEquation {
 #[derive(Clone, Debug)]
 pub(crate) struct Reduced {
     pub slots: Vec<Slot>,
-    pub slot_of: HashMap<Id, usize>,
+    /// The slot of each leaf, indexed by the leaf's id.
+    pub slot_of: IdIndex,
     pub var_diff: Vec<Option<usize>>,
     pub equations: Vec<ReducedEquation>,
     pub states: Vec<usize>,
@@ -390,12 +391,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     let mut dummy = selection.dummy.clone();
     dummy.resize(table.slots.len(), false);
     Ok(Reduced {
-        slot_of: table
-            .slots
-            .iter()
-            .enumerate()
-            .map(|(s, slot)| (slot.leaf, s))
-            .collect(),
+        slot_of: table.slot_of,
         slots: table.slots,
         var_diff,
         equations: eqs,

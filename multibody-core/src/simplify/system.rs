@@ -185,7 +185,8 @@ pub struct SimplifiedSystem {
     /// Per flat variable: its replacement when alias elimination removed it.
     pub(crate) replaced: Vec<Option<Id>>,
     pub(crate) slots: Vec<Slot>,
-    pub(crate) slot_of: HashMap<Id, usize>,
+    /// The slot of each leaf, indexed by the leaf's id.
+    pub(crate) slot_of: crate::expr::IdIndex,
     pub(crate) var_diff: Vec<Option<usize>>,
     pub(crate) equations: Vec<ReducedEquation>,
     pub(crate) initial_equations: Vec<(Id, String)>,
@@ -295,7 +296,7 @@ impl SimplifiedSystem {
                 super::causalize::Step::LinearSolve { targets, .. }
                 | super::causalize::Step::SparseLinearSolve { targets, .. } => {
                     for &t in targets {
-                        if self.slot_of.contains_key(&t) {
+                        if self.slot_of.contains(t) {
                             out.push((self.leaf_name(t), "linear system".into()));
                         }
                     }
@@ -341,8 +342,8 @@ impl SimplifiedSystem {
     }
 
     pub(crate) fn leaf_name(&self, leaf: Id) -> String {
-        match self.slot_of.get(&leaf) {
-            Some(&s) => self.slots[s].name.clone(),
+        match self.slot_of.get(leaf) {
+            Some(s) => self.slots[s].name.clone(),
             None => self.arena.display(leaf, &self.resolver()),
         }
     }

@@ -287,8 +287,8 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             n_params: np + nv,
             names: &|id| {
                 sys.slot_of
-                    .get(&id)
-                    .map(|&s| sys.slots[s].name.clone())
+                    .get(id)
+                    .map(|s| sys.slots[s].name.clone())
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },
@@ -400,15 +400,15 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
 
 /// A readable name for an unknown of the initialization system.
 fn init_name(sys: &SimplifiedSystem, arena: &crate::expr::Arena, l: Id) -> String {
-    match sys.slot_of.get(&l) {
-        Some(&s) => sys.slots[s].name.clone(),
+    match sys.slot_of.get(l) {
+        Some(s) => sys.slots[s].name.clone(),
         None => arena.display(l, &sys.resolver()),
     }
 }
 
 /// The first guess of an iteration variable: its guess, its start value, or 0.
 fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Arena, l: Id) -> f64 {
-    if let Some(&s) = sys.slot_of.get(&l) {
+    if let Some(s) = sys.slot_of.get(l) {
         let slot = &sys.slots[s];
         if slot.order == 0 {
             return input.guesses[slot.var]

@@ -104,24 +104,15 @@ impl<'a> DaeProblem<'a> {
         // Name lookups only when names are given: hashing every name of a large model
         // costs more than the rest of the set-up.
         let by_name = !(values.is_empty() && guesses.is_empty());
-        let var_index: HashMap<&str, usize> = if by_name {
-            sys.variables
-                .iter()
-                .enumerate()
-                .map(|(i, v)| (v.name.as_str(), i))
-                .collect()
-        } else {
-            HashMap::default()
+        let index = |names: &mut dyn Iterator<Item = &'a str>| -> HashMap<&'a str, usize> {
+            if by_name {
+                names.enumerate().map(|(i, n)| (n, i)).collect()
+            } else {
+                HashMap::default()
+            }
         };
-        let param_index: HashMap<&str, usize> = if by_name {
-            sys.parameters
-                .iter()
-                .enumerate()
-                .map(|(j, p)| (p.name.as_str(), j))
-                .collect()
-        } else {
-            HashMap::default()
-        };
+        let var_index = index(&mut sys.variables.iter().map(|v| v.name.as_str()));
+        let param_index = index(&mut sys.parameters.iter().map(|p| p.name.as_str()));
         let unknown = |name: &str| {
             let candidates = sys
                 .variables
@@ -197,7 +188,7 @@ impl<'a> DaeProblem<'a> {
         let mut u0 = Vec::with_capacity(sys.unknowns.len());
         let mut up0 = Vec::with_capacity(sys.unknowns.len());
         for &l in &sys.unknowns {
-            let s = sys.slot_of[&l];
+            let s = sys.slot_of.get(l).expect("an unknown is a slot");
             u0.push(init.slot_values[s]);
             up0.push(sys.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
         }
