@@ -120,7 +120,8 @@ fn csv_export_without_names_writes_every_variable() {
     sol.write_csv(&file.0, &[]).unwrap();
     let (header, rows) = read_csv(&file.0);
     assert_eq!(header[0], "time");
-    assert_eq!(&header[1..], sol.names());
+    let names: Vec<&str> = sol.names().iter().map(|n| &**n).collect();
+    assert_eq!(header[1..], names);
     assert!(header.iter().any(|h| h == "fixed.flange.f"));
     assert_eq!(rows.len(), 3);
     for (j, name) in sol.names().iter().enumerate() {
@@ -132,7 +133,7 @@ fn csv_export_without_names_writes_every_variable() {
     }
     // The fixed flange's position is its parameter s0 = 0 throughout, and the
     // reaction force balances spring and damper: f_fixed = c s + d v.
-    let col = |n: &str| 1 + sol.names().iter().position(|x| x == n).unwrap();
+    let col = |n: &str| 1 + sol.names().iter().position(|x| &**x == n).unwrap();
     for row in &rows {
         assert_eq!(row[col("fixed.flange.s")], 0.0);
         let (s, v) = (row[col("mass.s")], row[col("mass.v")]);

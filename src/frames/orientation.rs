@@ -61,7 +61,7 @@ impl VariableType for Orientation {
         for (i, row) in t.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
                 let mut v = template.clone();
-                v.name = format!("{local}.T[{},{}]", i + 1, j + 1);
+                v.name = format!("{local}.T[{},{}]", i + 1, j + 1).into();
                 v.description = "transformation matrix from world frame to local frame".into();
                 v = v.start(if i == j { 1.0 } else { 0.0 });
                 *x = s.variable(v);
@@ -70,7 +70,7 @@ impl VariableType for Orientation {
         let mut w = [c(0.0); 3];
         for (i, x) in w.iter_mut().enumerate() {
             let mut v = template.clone();
-            v.name = format!("{local}.w[{}]", i + 1);
+            v.name = format!("{local}.w[{}]", i + 1).into();
             v.description =
                 "absolute angular velocity of local frame, resolved in local frame".into();
             v.unit = "rad/s".into();

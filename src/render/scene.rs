@@ -139,7 +139,7 @@ impl Scene {
                     let name = join(&sys.path, &format!("r_CM[{}]", i + 1));
                     sys.parameters
                         .iter()
-                        .find(|p| p.name == name)
+                        .find(|p| *p.name == *name)
                         .and_then(|p| p.value.and_then(|v| v.as_f64()))
                         .unwrap_or(0.0)
                 });

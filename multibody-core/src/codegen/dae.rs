@@ -4,6 +4,8 @@
 //! All tapes read the same inputs, laid out by [`InputLayout`]:
 //! `[t, p_0 .. p_m, u_0 .. u_n, u'_0 .. u'_n]`.
 
+use std::sync::Arc;
+
 use crate::expr::{Arena, Id};
 use crate::simplify::causalize::Step;
 
@@ -73,10 +75,11 @@ pub struct CompiledDae {
     /// The extended Jacobian of [`Self::residual`], kept when it is much sparser than
     /// [`Self::jacobian`] (see [`prefer_extended`]); sparse solvers then use it.
     pub extended: Option<ExtendedJacobian>,
-    /// Every observable variable, one output each, named by [`Self::observed_names`].
-    pub observed: Tape,
-    /// Names of the outputs of [`Self::observed`].
-    pub observed_names: Vec<String>,
+    /// Every observable variable, one output each, named by [`Self::observed_names`]
+    /// (shared by every problem and solution made from this system).
+    pub observed: Arc<Tape>,
+    /// Names of the outputs of [`Self::observed`] (shared like it).
+    pub observed_names: Arc<Vec<Arc<str>>>,
 }
 
 /// What the code generator needs to know about a system.
@@ -88,7 +91,7 @@ pub(crate) struct DaeSpec<'a> {
     pub derivative_inputs: &'a [(Id, usize)],
     pub rows: &'a [Row],
     /// Observed outputs.
-    pub observed: &'a [(String, Id)],
+    pub observed: &'a [(Arc<str>, Id)],
     pub n_params: usize,
     /// Names of leaves, for messages.
     pub names: &'a dyn Fn(Id) -> String,
@@ -189,7 +192,8 @@ pub(crate) fn compile_dae(
         b.output(*e)?;
         observed_names.push(name.clone());
     }
-    let observed = b.build();
+    let observed = Arc::new(b.build());
+    let observed_names = Arc::new(observed_names);
     Ok(CompiledDae {
         layout,
         residual,

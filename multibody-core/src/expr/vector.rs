@@ -314,7 +314,7 @@ impl VariableType for Vec3 {
         let mut out = [Expr::constant(0.0); 3];
         for (i, o) in out.iter_mut().enumerate() {
             let mut v = template.clone();
-            v.name = element_name(&template.name, i);
+            v.name = element_name(&template.name, i).into();
             *o = s.variable(v);
         }
         Vec3(out)
@@ -330,7 +330,7 @@ impl VariableType for Mat3 {
         for i in 0..3 {
             for j in 0..3 {
                 let mut v = template.clone();
-                v.name = format!("{}[{},{}]", template.name, i + 1, j + 1);
+                v.name = format!("{}[{},{}]", template.name, i + 1, j + 1).into();
                 m[i][j] = s.variable(v);
             }
         }
@@ -370,7 +370,7 @@ impl ParameterType for [f64; 3] {
         let mut out = [Expr::constant(0.0); 3];
         for (i, o) in out.iter_mut().enumerate() {
             let mut p = template.clone();
-            p.name = element_name(&template.name, i);
+            p.name = element_name(&template.name, i).into();
             p.value = Some(Expr::constant(self[i]));
             *o = s.parameter(p);
         }

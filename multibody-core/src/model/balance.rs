@@ -47,7 +47,7 @@ pub fn check_balance(flat: &FlatSystem) -> Result<(), ModelError> {
     let undetermined = dm
         .under_vars
         .iter()
-        .map(|&v| flat.variables[v].name.clone())
+        .map(|&v| flat.variables[v].name.to_string())
         .collect();
     let overdetermined = dm
         .over_eqs

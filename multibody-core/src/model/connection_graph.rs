@@ -81,7 +81,9 @@ pub(crate) fn resolve(model: &System) -> Result<GraphResult, ModelError> {
     let mut node_of: HashMap<String, usize> = HashMap::default();
     let mut connector_groups: HashMap<String, Vec<usize>> = HashMap::default();
     let mut decls: Vec<(String, GraphDecl)> = Vec::new();
-    let mut connections: Vec<(String, String)> = Vec::new();
+    // Connections by their system, their full paths written out only when the model
+    // has overdetermined groups at all.
+    let mut connection_of: Vec<(&str, &super::system::Connection)> = Vec::new();
     let mut stack = vec![model];
     while let Some(s) = stack.pop() {
         for g in &s.overdetermined {
@@ -96,7 +98,7 @@ pub(crate) fn resolve(model: &System) -> Result<GraphResult, ModelError> {
             decls.push((s.path.clone(), d.clone()));
         }
         for c in &s.connections {
-            connections.push((join_path(&s.path, &c.a), join_path(&s.path, &c.b)));
+            connection_of.push((&s.path, c));
         }
         for sub in s.subsystems.iter().rev() {
             stack.push(sub);
@@ -105,6 +107,10 @@ pub(crate) fn resolve(model: &System) -> Result<GraphResult, ModelError> {
     if groups.is_empty() {
         return Ok(GraphResult::default());
     }
+    let connections: Vec<(String, String)> = connection_of
+        .iter()
+        .map(|(path, c)| (join_path(path, &c.a), join_path(path, &c.b)))
+        .collect();
     let n = groups.len();
     let node = |path: &str| -> Result<usize, ModelError> {
         node_of.get(path).copied().ok_or_else(|| ModelError::Graph {

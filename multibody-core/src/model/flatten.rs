@@ -1,12 +1,14 @@
 //! Flattening: the system tree becomes scalar equations over numbered variables.
 
+use std::sync::Arc;
+
 use crate::hash::HashMap;
 
 use crate::expr::{Arena, Expr, Id, NameResolver, Node, NodeMap};
 use crate::names::closest;
 
 use super::error::ModelError;
-use super::system::{Equation, System, join_path};
+use super::system::{Equation, System, join_path, join_path_into};
 use super::variable::{Parameter, VarKind, Variable};
 
 /// Where a flat equation came from (for messages).
@@ -15,26 +17,27 @@ pub enum Origin {
     /// Declared in a component.
     Component {
         /// The component's path (empty for the root).
-        path: String,
+        path: Arc<str>,
         /// The equation as written.
         equation: Equation,
     },
     /// Equal potentials (or signals) of two connected connectors.
     Connect {
         /// The two variables made equal.
-        a: String,
+        a: Arc<str>,
         /// Second variable.
-        b: String,
+        b: Arc<str>,
     },
     /// Zero sum of the flows of a connection set.
     FlowSum {
-        /// The flow variables of the set.
-        flows: Vec<String>,
+        /// The flow variables of the set, each with whether it enters the sum negated
+        /// (a connector connected from outside its component).
+        flows: Vec<(Arc<str>, bool)>,
     },
     /// The flow of a connector that is connected nowhere is zero.
     UnconnectedFlow {
         /// The flow variable.
-        flow: String,
+        flow: Arc<str>,
     },
     /// Decided by the virtual connection graph (orientation propagation along a
     /// branch or connection, a loop closure residue, a root's equations).
@@ -49,7 +52,7 @@ pub enum Origin {
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
-        var: String,
+        var: Arc<str>,
     },
 }
 
@@ -101,10 +104,10 @@ pub struct FlatNames<'a> {
 
 impl NameResolver for FlatNames<'_> {
     fn var(&self, i: u32) -> String {
-        self.variables[i as usize].name.clone()
+        self.variables[i as usize].name.to_string()
     }
     fn param(&self, i: u32) -> String {
-        self.parameters[i as usize].name.clone()
+        self.parameters[i as usize].name.to_string()
     }
 }
 
@@ -131,15 +134,23 @@ impl FlatSystem {
     pub fn describe_origin(origin: &Origin) -> String {
         match origin {
             Origin::Component { path, equation } => {
-                let at = if path.is_empty() {
-                    "model"
-                } else {
-                    path.as_str()
-                };
+                let at = if path.is_empty() { "model" } else { path };
                 format!("{at}: {} = {}", equation.lhs, equation.rhs)
             }
             Origin::Connect { a, b } => format!("connection: {a} = {b}"),
-            Origin::FlowSum { flows } => format!("connection: {} = 0", flows.join(" + ")),
+            Origin::FlowSum { flows } => {
+                let terms: Vec<String> = flows
+                    .iter()
+                    .map(|(n, negated)| {
+                        if *negated {
+                            format!("-{n}")
+                        } else {
+                            n.to_string()
+                        }
+                    })
+                    .collect();
+                format!("connection: {} = 0", terms.join(" + "))
+            }
             Origin::UnconnectedFlow { flow } => format!("unconnected flow: {flow} = 0"),
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
             Origin::Graph { text, equation, .. } => {
@@ -167,8 +178,10 @@ struct Flattener<'g> {
     connector_of_path: HashMap<String, usize>,
     memo: NodeMap,
     /// Declarations whose names were never interned (pushed by hand): for duplicates.
-    unnamed: HashMap<String, u32>,
+    unnamed: HashMap<Arc<str>, u32>,
     errors: Vec<ModelError>,
+    /// Work space for the paths of connectors looked up.
+    path_buffer: String,
 }
 
 /// Records `idx` for symbol `sym`; false if the symbol is declared already.
@@ -221,6 +234,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         memo: NodeMap::new(),
         unnamed: HashMap::default(),
         errors: Vec::new(),
+        path_buffer: String::new(),
     };
     // Pass 1: declarations.
     let mut stack = vec![sys];
@@ -237,9 +251,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     }
     // Pass 2: equations, starts and parameter values.
     for s in &order {
+        // One shared copy of the path for all of this component's equations.
+        let path: Arc<str> = Arc::from(s.path.as_str());
         for eq in &s.equations {
             let origin = Origin::Component {
-                path: s.path.clone(),
+                path: path.clone(),
                 equation: *eq,
             };
             if let Some((r, lhs_var)) = f.translate_equation(eq, &origin) {
@@ -252,7 +268,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         }
         for eq in &s.initial_equations {
             let origin = Origin::Component {
-                path: s.path.clone(),
+                path: path.clone(),
                 equation: *eq,
             };
             if let Some((r, lhs_var)) = f.translate_equation(eq, &origin) {
@@ -265,7 +281,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         }
         for (var, der) in &s.derivative_rules {
             let origin = Origin::Component {
-                path: s.path.clone(),
+                path: path.clone(),
                 equation: Equation {
                     lhs: *var,
                     rhs: *der,
@@ -293,27 +309,32 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             });
         }
     }
-    let vars = f.flat.variables.clone();
-    for v in &vars {
-        let start = v.start.and_then(|e| {
-            let origin = Origin::FixedStart {
-                var: v.name.clone(),
-            };
-            f.translate(e, &origin)
-        });
+    for i in 0..f.flat.variables.len() {
+        let start = match f.flat.variables[i].start {
+            Some(e) => {
+                let origin = Origin::FixedStart {
+                    var: f.flat.variables[i].name.clone(),
+                };
+                f.translate(e, &origin)
+            }
+            None => None,
+        };
         f.flat.starts.push(start);
     }
-    let params = f.flat.parameters.clone();
-    for p in &params {
-        let val = p.value.and_then(|e| {
-            let origin = Origin::FixedStart {
-                var: p.name.clone(),
-            };
-            f.translate(e, &origin)
-        });
-        if val.is_none() && p.fixed {
-            f.errors
-                .push(ModelError::ParameterWithoutValue(p.name.clone()));
+    for i in 0..f.flat.parameters.len() {
+        let val = match f.flat.parameters[i].value {
+            Some(e) => {
+                let origin = Origin::FixedStart {
+                    var: f.flat.parameters[i].name.clone(),
+                };
+                f.translate(e, &origin)
+            }
+            None => None,
+        };
+        let fixed = f.flat.parameters[i].fixed;
+        if val.is_none() && fixed {
+            let name = f.flat.parameters[i].name.to_string();
+            f.errors.push(ModelError::ParameterWithoutValue(name));
         }
         f.flat.parameter_values.push(val);
     }
@@ -336,7 +357,8 @@ impl Flattener<'_> {
                 None => self.unnamed.insert(v.name.clone(), idx).is_some(),
             };
             if duplicate {
-                self.errors.push(ModelError::DuplicateName(v.name.clone()));
+                self.errors
+                    .push(ModelError::DuplicateName(v.name.to_string()));
             }
             self.flat.variables.push(v.clone());
             if v.kind != VarKind::Internal {
@@ -351,7 +373,8 @@ impl Flattener<'_> {
                 None => self.unnamed.insert(p.name.clone(), idx).is_some(),
             };
             if duplicate {
-                self.errors.push(ModelError::DuplicateName(p.name.clone()));
+                self.errors
+                    .push(ModelError::DuplicateName(p.name.to_string()));
             }
             self.flat.parameters.push(p.clone());
         }
@@ -427,17 +450,9 @@ impl Flattener<'_> {
                 _ => "a connection".into(),
             };
             let candidates: Vec<&str> = if what == "variable" {
-                self.flat
-                    .variables
-                    .iter()
-                    .map(|v| v.name.as_str())
-                    .collect()
+                self.flat.variables.iter().map(|v| &*v.name).collect()
             } else {
-                self.flat
-                    .parameters
-                    .iter()
-                    .map(|p| p.name.as_str())
-                    .collect()
+                self.flat.parameters.iter().map(|p| &*p.name).collect()
             };
             let suggestions = closest(&name, candidates, 3);
             self.errors.push(ModelError::UnknownName {
@@ -460,16 +475,19 @@ impl Flattener<'_> {
         let mut elem_parent: Vec<usize> = Vec::new();
         for s in order {
             for c in &s.connections {
-                let text = format!(
-                    "{}connect({}, {})",
-                    if s.path.is_empty() {
-                        String::new()
-                    } else {
-                        format!("{}: ", s.path)
-                    },
-                    c.a,
-                    c.b
-                );
+                // Written out only for messages.
+                let text = || {
+                    format!(
+                        "{}connect({}, {})",
+                        if s.path.is_empty() {
+                            String::new()
+                        } else {
+                            format!("{}: ", s.path)
+                        },
+                        c.a,
+                        c.b
+                    )
+                };
                 let Some(ia) = self.resolve_connector(s, &c.a, &text) else {
                     continue;
                 };
@@ -479,7 +497,7 @@ impl Flattener<'_> {
                 let (ca, cb) = (&self.connectors[ia], &self.connectors[ib]);
                 if ca.class != cb.class || ca.vars.len() != cb.vars.len() {
                     self.errors.push(ModelError::IncompatibleConnectors {
-                        connection: text,
+                        connection: text(),
                         a: join_path(&s.path, &c.a),
                         class_a: ca.class.clone(),
                         b: join_path(&s.path, &c.b),
@@ -570,7 +588,7 @@ impl Flattener<'_> {
                     let x = self.flat.arena.var(v as u32);
                     terms.push((if inside { 1.0 } else { -1.0 }, x));
                     let n = &self.flat.variables[v].name;
-                    names.push(if inside { n.clone() } else { format!("-{n}") });
+                    names.push((n.clone(), !inside));
                 }
                 let r = self.flat.arena.linear_combination(0.0, &terms);
                 self.flat.equations.push(FlatEquation {
@@ -601,11 +619,17 @@ impl Flattener<'_> {
         }
     }
 
-    fn resolve_connector(&mut self, s: &System, local: &str, text: &str) -> Option<usize> {
-        let full = join_path(&s.path, local);
-        if let Some(&i) = self.connector_of_path.get(&full) {
+    fn resolve_connector(
+        &mut self,
+        s: &System,
+        local: &str,
+        text: &dyn Fn() -> String,
+    ) -> Option<usize> {
+        join_path_into(&s.path, local, &mut self.path_buffer);
+        if let Some(&i) = self.connector_of_path.get(self.path_buffer.as_str()) {
             return Some(i);
         }
+        let full = join_path(&s.path, local);
         let prefix = if s.path.is_empty() {
             String::new()
         } else {
@@ -621,7 +645,7 @@ impl Flattener<'_> {
         candidates.sort();
         let suggestions = closest(&full, candidates, 3);
         self.errors.push(ModelError::UnknownConnector {
-            connection: text.to_string(),
+            connection: text(),
             name: full,
             suggestions,
         });

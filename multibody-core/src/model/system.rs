@@ -85,13 +85,20 @@ pub struct System {
 
 /// Joins a path and a local name with a dot (an empty side is left out).
 pub fn join_path(path: &str, local: &str) -> String {
-    match (path.is_empty(), local.is_empty()) {
-        (true, _) => local.to_string(),
-        (_, true) => path.to_string(),
-        // An element of the system itself (a vector signal connector's `[1]`).
-        _ if local.starts_with('[') => format!("{path}{local}"),
-        _ => format!("{path}.{local}"),
+    let mut out = String::with_capacity(path.len() + 1 + local.len());
+    join_path_into(path, local, &mut out);
+    out
+}
+
+/// [`join_path`] written into `out` (cleared first), to reuse its allocation.
+pub fn join_path_into(path: &str, local: &str, out: &mut String) {
+    out.clear();
+    out.push_str(path);
+    // An element of the system itself (a vector signal connector's `[1]`) takes no dot.
+    if !path.is_empty() && !local.is_empty() && !local.starts_with('[') {
+        out.push('.');
     }
+    out.push_str(local);
 }
 
 impl System {
@@ -144,7 +151,7 @@ impl System {
 
     /// Declares an unknown (its `name` is local to this system) and returns it.
     pub fn variable(&mut self, mut v: Variable) -> Expr {
-        v.name = self.full(&v.name);
+        v.name = self.full(&v.name).into();
         let e = Expr::var(&v.name);
         v.symbol = e.symbol();
         self.variables.push(v);
@@ -164,7 +171,7 @@ impl System {
 
     /// Declares a tunable parameter (its `name` is local) and returns it.
     pub fn parameter(&mut self, mut p: Parameter) -> Expr {
-        p.name = self.full(&p.name);
+        p.name = self.full(&p.name).into();
         let e = Expr::param(&p.name);
         p.symbol = e.symbol();
         self.parameters.push(p);
@@ -188,7 +195,7 @@ impl System {
     /// unknown exists.
     pub fn set_start(&mut self, local_path: &str, value: impl Into<Expr>) -> bool {
         fn find<'s>(s: &'s mut System, full: &str) -> Option<&'s mut Variable> {
-            if let Some(i) = s.variables.iter().position(|v| v.name == full) {
+            if let Some(i) = s.variables.iter().position(|v| &*v.name == full) {
                 return Some(&mut s.variables[i]);
             }
             s.subsystems

@@ -1,5 +1,7 @@
 //! Declarations of unknowns and parameters.
 
+use std::sync::Arc;
+
 use crate::expr::Expr;
 
 /// What a variable is to connections.
@@ -52,7 +54,7 @@ impl StateSelect {
 #[derive(Clone, Debug)]
 pub struct Variable {
     /// Full path, e.g. `motor.inertia.phi`.
-    pub name: String,
+    pub name: Arc<str>,
     /// Start value (a constant or an expression of parameters); default: none (0).
     pub start: Option<Expr>,
     /// Whether the start value must hold at the initial time (default: false, so the
@@ -61,9 +63,9 @@ pub struct Variable {
     /// Initial guess for iterations, when different from the start value (default: none).
     pub guess: Option<f64>,
     /// Description for documentation and messages (default: empty).
-    pub description: String,
+    pub description: Arc<str>,
     /// Unit, e.g. `rad` (default: empty).
-    pub unit: String,
+    pub unit: Arc<str>,
     /// Preference for being chosen as a state: higher stays a state (default 0).
     pub state_priority: f64,
     /// Role in connections (default: [`VarKind::Internal`]).
@@ -74,14 +76,14 @@ pub struct Variable {
 
 impl Variable {
     /// An internal unknown with no start value.
-    pub fn new(name: impl Into<String>) -> Self {
+    pub fn new(name: impl Into<Arc<str>>) -> Self {
         Variable {
             name: name.into(),
             start: None,
             fixed: false,
             guess: None,
-            description: String::new(),
-            unit: String::new(),
+            description: Arc::default(),
+            unit: Arc::default(),
             state_priority: 0.0,
             kind: VarKind::Internal,
             symbol: None,
@@ -107,13 +109,13 @@ impl Variable {
     }
 
     /// Sets the description.
-    pub fn description(mut self, text: impl Into<String>) -> Self {
+    pub fn description(mut self, text: impl Into<Arc<str>>) -> Self {
         self.description = text.into();
         self
     }
 
     /// Sets the unit.
-    pub fn unit(mut self, unit: impl Into<String>) -> Self {
+    pub fn unit(mut self, unit: impl Into<Arc<str>>) -> Self {
         self.unit = unit.into();
         self
     }
@@ -143,7 +145,7 @@ impl Variable {
 #[derive(Clone, Debug)]
 pub struct Parameter {
     /// Full path, e.g. `motor.R`.
-    pub name: String,
+    pub name: Arc<str>,
     /// Default value or binding expression of other parameters (default: none, which is
     /// an error unless the parameter is computed at initialization).
     pub value: Option<Expr>,
@@ -151,9 +153,9 @@ pub struct Parameter {
     /// `fixed=false`), its value only a guess (default: true).
     pub fixed: bool,
     /// Description (default: empty).
-    pub description: String,
+    pub description: Arc<str>,
     /// Unit (default: empty).
-    pub unit: String,
+    pub unit: Arc<str>,
     /// `true` folds the value into the equations at `structural_simplify` (MSL
     /// `Evaluate=true`): zero offsets and switches then vanish from the compiled code,
     /// and the parameter can no longer be changed without simplifying again
@@ -165,13 +167,13 @@ pub struct Parameter {
 
 impl Parameter {
     /// A parameter with a default value.
-    pub fn new(name: impl Into<String>, value: impl Into<Expr>) -> Self {
+    pub fn new(name: impl Into<Arc<str>>, value: impl Into<Expr>) -> Self {
         Parameter {
             name: name.into(),
             value: Some(value.into()),
             fixed: true,
-            description: String::new(),
-            unit: String::new(),
+            description: Arc::default(),
+            unit: Arc::default(),
             evaluate: false,
             symbol: None,
         }
@@ -191,13 +193,13 @@ impl Parameter {
     }
 
     /// Sets the description.
-    pub fn description(mut self, text: impl Into<String>) -> Self {
+    pub fn description(mut self, text: impl Into<Arc<str>>) -> Self {
         self.description = text.into();
         self
     }
 
     /// Sets the unit.
-    pub fn unit(mut self, unit: impl Into<String>) -> Self {
+    pub fn unit(mut self, unit: impl Into<Arc<str>>) -> Self {
         self.unit = unit.into();
         self
     }

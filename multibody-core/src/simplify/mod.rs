@@ -21,6 +21,7 @@ mod linear_block_tests;
 mod tests;
 
 use crate::hash::{HashMap, HashSet};
+use std::sync::Arc;
 use std::time::Instant;
 
 pub use causalize::{BlockKind, LinearBlockLimits};
@@ -142,7 +143,7 @@ pub fn structural_simplify_with(
         parameters: &flat.parameters,
     };
     let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
-    let names: Vec<&str> = flat.variables.iter().map(|v| v.name.as_str()).collect();
+    let names: Vec<Arc<str>> = flat.variables.iter().map(|v| v.name.clone()).collect();
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
@@ -198,7 +199,7 @@ pub fn structural_simplify_with(
         let name_of = |&l: &Id| {
             reduced.slots[reduced.slot_of.get(l).expect("a slot")]
                 .name
-                .clone()
+                .to_string()
         };
         SimplifyError::singular(
             &name,
@@ -301,7 +302,7 @@ pub fn structural_simplify_with(
                 reduced
                     .slot_of
                     .get(id)
-                    .map(|s| reduced.slots[s].name.clone())
+                    .map(|s| reduced.slots[s].name.to_string())
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },
@@ -381,7 +382,7 @@ fn observed_outputs(
     flat: &crate::model::FlatSystem,
     replaced: &[Option<Id>],
     reduced: &reduce::Reduced,
-) -> Vec<(String, Id)> {
+) -> Vec<(Arc<str>, Id)> {
     let mut out = Vec::with_capacity(flat.variables.len() + reduced.slots.len());
     let mut var_leaf: Vec<Option<Id>> = vec![None; flat.variables.len()];
     for s in &reduced.slots {

@@ -2,6 +2,8 @@
 //! integer graph for Pantelides, symbolic differentiation of the equations it marks, and
 //! dummy-derivative state selection.
 
+use std::sync::Arc;
+
 use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
@@ -24,7 +26,7 @@ pub struct Slot {
     /// How many times `var` is differentiated (0 for the variable itself).
     pub order: usize,
     /// Display name: `j1.phi`, `der(j1.w)`.
-    pub name: String,
+    pub name: Arc<str>,
 }
 
 /// An equation of the reduced system.
@@ -91,7 +93,7 @@ fn below_slot(slot_of: &IdIndex, leaf: Id) -> usize {
 /// Builds slots for the leaves of the equations and for every kept variable.
 pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,
-    pub names: &'a [&'a str],
+    pub names: &'a [Arc<str>],
     pub slots: Vec<Slot>,
     /// The slot of each leaf, indexed by the leaf's id.
     pub slot_of: IdIndex,
@@ -111,15 +113,14 @@ impl SlotTable<'_> {
             }
             n => panic!("slot of a non-variable leaf {n:?}"),
         };
-        let base = self.names[var];
-        let name = match self.arena.node(leaf) {
-            Node::Var(_) => base.to_string(),
+        let name: Arc<str> = match self.arena.node(leaf) {
+            Node::Var(_) => self.names[var].clone(),
             _ => {
                 let inner = match self.arena.node(leaf) {
                     Node::Der(i) => *i,
                     _ => unreachable!(),
                 };
-                format!("der({})", self.slots[below_slot(&self.slot_of, inner)].name)
+                format!("der({})", self.slots[below_slot(&self.slot_of, inner)].name).into()
             }
         };
         let s = self.slots.len();
@@ -150,7 +151,7 @@ pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {
 pub(crate) struct ReduceInput<'a> {
     pub arena: &'a mut Arena,
     /// Flat variable names.
-    pub names: &'a [&'a str],
+    pub names: &'a [Arc<str>],
     /// State priority and whether each flat variable is kept (not eliminated).
     pub priority: &'a [f64],
     pub kept: &'a [bool],
@@ -235,7 +236,9 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
             undetermined,
         }) => {
             let names = |vs: &[usize]| -> Vec<String> {
-                vs.iter().map(|&v| table.slots[v].name.clone()).collect()
+                vs.iter()
+                    .map(|&v| table.slots[v].name.to_string())
+                    .collect()
             };
             return Err(SimplifyError::singular(
                 model,
@@ -316,7 +319,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                     equations.iter().map(|&e| eqs[e].text.to_string()).collect(),
                     candidates
                         .iter()
-                        .map(|&v| table.slots[v].name.clone())
+                        .map(|&v| table.slots[v].name.to_string())
                         .collect(),
                     Vec::new(),
                 ));
@@ -359,7 +362,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                         .iter()
                         .filter(|v| level.dummies.contains(v) == dummy)
                         .filter_map(|&v| anti[v])
-                        .map(|v| table.slots[v].name.clone())
+                        .map(|v| table.slots[v].name.to_string())
                         .collect()
                 };
                 let shown: Vec<String> = level

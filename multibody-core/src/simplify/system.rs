@@ -281,7 +281,7 @@ impl SimplifiedSystem {
         let mut out = Vec::new();
         for (i, v) in self.variables.iter().enumerate() {
             if let Some(r) = self.replaced[i] {
-                out.push((v.name.clone(), self.arena.display(r, &names)));
+                out.push((v.name.to_string(), self.arena.display(r, &names)));
             }
         }
         for step in &self.schedule.steps {
@@ -319,7 +319,7 @@ impl SimplifiedSystem {
 
     /// Names of the tunable parameters.
     pub fn parameters(&self) -> Vec<String> {
-        self.parameters.iter().map(|p| p.name.clone()).collect()
+        self.parameters.iter().map(|p| p.name.to_string()).collect()
     }
 
     /// Names of the parameters whose values were folded into the equations at compile
@@ -331,19 +331,23 @@ impl SimplifiedSystem {
             .iter()
             .zip(&self.evaluated_parameters)
             .filter(|(_, e)| **e)
-            .map(|(p, _)| p.name.clone())
+            .map(|(p, _)| p.name.to_string())
             .collect()
     }
 
     /// Names of every variable that a solution can return: the model's variables and
     /// the derivatives that the reduced system contains (`der(j1.w)`).
     pub fn variable_names(&self) -> Vec<String> {
-        self.compiled.observed_names.clone()
+        self.compiled
+            .observed_names
+            .iter()
+            .map(|n| n.to_string())
+            .collect()
     }
 
     pub(crate) fn leaf_name(&self, leaf: Id) -> String {
         match self.slot_of.get(leaf) {
-            Some(s) => self.slots[s].name.clone(),
+            Some(s) => self.slots[s].name.to_string(),
             None => self.arena.display(leaf, &self.resolver()),
         }
     }
@@ -365,13 +369,13 @@ pub(crate) struct SystemNames<'a> {
 impl NameResolver for SystemNames<'_> {
     fn var(&self, i: u32) -> String {
         match self.variables.get(i as usize) {
-            Some(v) => v.name.clone(),
+            Some(v) => v.name.to_string(),
             None => format!("_tmp{i}"),
         }
     }
     fn param(&self, i: u32) -> String {
         match self.parameters.get(i as usize) {
-            Some(p) => p.name.clone(),
+            Some(p) => p.name.to_string(),
             None => format!("_start{}", i as usize - self.parameters.len()),
         }
     }

@@ -211,7 +211,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
                 slot.leaf
             };
             eqs.push((r, InitText::AssumedStart(&slot.name)));
-            assumed.push((slot.name.clone(), value));
+            assumed.push((slot.name.to_string(), value));
             deficiency -= 1;
         } else {
             eq_to_var.pop();
@@ -275,7 +275,9 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .iter()
         .map(|&(r, _)| Row::Expr(r))
         .collect();
-    let observed: Vec<(String, Id)> = unknowns.iter().map(|&l| (String::new(), l)).collect();
+    let unnamed: std::sync::Arc<str> = std::sync::Arc::from("");
+    let observed: Vec<(std::sync::Arc<str>, Id)> =
+        unknowns.iter().map(|&l| (unnamed.clone(), l)).collect();
     let compiled = compile_dae(
         &mut arena,
         &DaeSpec {
@@ -288,7 +290,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             names: &|id| {
                 sys.slot_of
                     .get(id)
-                    .map(|s| sys.slots[s].name.clone())
+                    .map(|s| sys.slots[s].name.to_string())
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },
@@ -341,7 +343,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .filter(|&i| input.fixed[i])
             .map(|i| {
                 (
-                    sys.variables[i].name.clone(),
+                    sys.variables[i].name.to_string(),
                     input.starts[i].unwrap_or(0.0),
                 )
             })
@@ -382,7 +384,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         {
             return Err(InitError::Inconsistent {
                 model,
-                variable: sys.variables[i].name.clone(),
+                variable: sys.variables[i].name.to_string(),
                 start,
                 value: v,
             });
@@ -401,7 +403,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
 /// A readable name for an unknown of the initialization system.
 fn init_name(sys: &SimplifiedSystem, arena: &crate::expr::Arena, l: Id) -> String {
     match sys.slot_of.get(l) {
-        Some(s) => sys.slots[s].name.clone(),
+        Some(s) => sys.slots[s].name.to_string(),
         None => arena.display(l, &sys.resolver()),
     }
 }

@@ -111,14 +111,14 @@ impl<'a> DaeProblem<'a> {
                 HashMap::default()
             }
         };
-        let var_index = index(&mut sys.variables.iter().map(|v| v.name.as_str()));
-        let param_index = index(&mut sys.parameters.iter().map(|p| p.name.as_str()));
+        let var_index = index(&mut sys.variables.iter().map(|v| &*v.name));
+        let param_index = index(&mut sys.parameters.iter().map(|p| &*p.name));
         let unknown = |name: &str| {
             let candidates = sys
                 .variables
                 .iter()
-                .map(|v| v.name.as_str())
-                .chain(sys.parameters.iter().map(|p| p.name.as_str()));
+                .map(|v| &*v.name)
+                .chain(sys.parameters.iter().map(|p| &*p.name));
             InitError::UnknownName {
                 model: sys.name.clone(),
                 name: name.to_string(),
@@ -362,8 +362,8 @@ impl<'a> DaeProblem<'a> {
         }
         Ok(Solution::new(
             sys.name.clone(),
-            Arc::new(c.observed.clone()),
-            Arc::new(c.observed_names.clone()),
+            c.observed.clone(),
+            c.observed_names.clone(),
             c.layout,
             self.params.clone(),
             Arc::new(sys.parameters()),

@@ -20,8 +20,8 @@ use super::problem::InitReport;
 pub struct Solution {
     model: String,
     observed: Arc<Tape>,
-    names: Arc<Vec<String>>,
-    index: HashMap<String, usize>,
+    names: Arc<Vec<Arc<str>>>,
+    index: HashMap<Arc<str>, usize>,
     layout: InputLayout,
     params: Vec<f64>,
     parameter_names: Arc<Vec<String>>,
@@ -38,7 +38,7 @@ impl Solution {
     pub(crate) fn new(
         model: String,
         observed: Arc<Tape>,
-        names: Arc<Vec<String>>,
+        names: Arc<Vec<Arc<str>>>,
         layout: InputLayout,
         params: Vec<f64>,
         parameter_names: Arc<Vec<String>>,
@@ -82,7 +82,7 @@ impl Solution {
     }
 
     /// Names of every variable the solution can give.
-    pub fn names(&self) -> &[String] {
+    pub fn names(&self) -> &[Arc<str>] {
         &self.names
     }
 
@@ -121,7 +121,7 @@ impl Solution {
             .copied()
             .ok_or_else(|| SolutionError::UnknownVariable {
                 name: name.to_string(),
-                suggestions: closest(name, self.names.iter().map(|s| s.as_str()), 3),
+                suggestions: closest(name, self.names.iter().map(|s| &**s), 3),
             })
     }
 
@@ -276,7 +276,7 @@ impl Solution {
         let path = path.as_ref();
         let all: Vec<&str>;
         let names = if names.is_empty() {
-            all = self.names.iter().map(|s| s.as_str()).collect();
+            all = self.names.iter().map(|s| &**s).collect();
             &all[..]
         } else {
             names
