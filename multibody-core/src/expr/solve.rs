@@ -1,5 +1,7 @@
 //! Solving an equation for one of its leaves when it is linear in it.
 
+use std::cell::Cell;
+
 use crate::hash::HashMap;
 
 use super::{Arena, Id, Node};
@@ -11,6 +13,12 @@ pub struct LinearSolve {
     pub solution: Id,
     /// `a`: where it may vanish, the solution is not safe to use.
     pub coefficient: Id,
+}
+
+thread_local! {
+    /// The other terms of a direct solve, kept per thread (most equations of a large
+    /// model are solved this way: one allocation each otherwise).
+    static OTHER_TERMS: Cell<Vec<(f64, Id)>> = const { Cell::new(Vec::new()) };
 }
 
 impl Arena {
@@ -54,16 +62,20 @@ impl Arena {
         let pos = terms.iter().position(|&(_, t)| t == x)?;
         let k = f64::from_bits(terms[pos].0);
         let inv = 1.0 / k;
-        let others: Vec<(f64, Id)> = terms
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| i != pos)
-            .map(|(_, &(kk, t))| (inv * -f64::from_bits(kk), t))
-            .collect();
-        if others.iter().any(|&(_, t)| self.contains(t, x)) {
-            return None;
-        }
-        let solution = self.linear_combination(inv * -f64::from_bits(c), &others);
+        let mut others = OTHER_TERMS.take();
+        others.clear();
+        others.extend(
+            terms
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != pos)
+                .map(|(_, &(kk, t))| (inv * -f64::from_bits(kk), t)),
+        );
+        let nonlinear = others.iter().any(|&(_, t)| self.contains(t, x));
+        let solution =
+            (!nonlinear).then(|| self.linear_combination(inv * -f64::from_bits(c), &others));
+        OTHER_TERMS.set(others);
+        let solution = solution?;
         Some(Some(LinearSolve {
             solution,
             coefficient: self.constant(k),

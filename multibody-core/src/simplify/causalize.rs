@@ -13,7 +13,7 @@ use crate::hash::{HashMap, HashSet};
 
 use crate::expr::{Arena, Id, IdIndex, Node};
 use crate::structure::BipartiteGraph;
-use crate::structure::blt::blt;
+use crate::structure::blt::blt_flat;
 use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::maximum_matching;
 use crate::structure::tearing::{TearingEquation, tear_with_priority};
@@ -197,11 +197,12 @@ pub fn causalize(
 ) -> Result<Schedule, Singular> {
     let index = IdIndex::new(unknowns);
     let mut g = BipartiteGraph::new(unknowns.len());
-    let mut leaves = Vec::new();
+    let (mut leaves, mut vars) = (Vec::new(), Vec::new());
     for &r in equations {
         arena.leaves_into(r, &mut leaves);
-        let vars: Vec<usize> = leaves.iter().filter_map(|&l| index.get(l)).collect();
-        g.add_equation(vars);
+        vars.clear();
+        vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
+        g.add_equation_from(&mut vars);
     }
     let m = maximum_matching(&g, None, None);
     if !m.is_perfect() || equations.len() != unknowns.len() {
@@ -217,7 +218,7 @@ pub fn causalize(
         });
     }
     let mut out = Schedule::default();
-    for block in blt(&g, &m) {
+    for block in blt_flat(&g, &m).iter() {
         let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {
             scalar_block(
@@ -234,7 +235,7 @@ pub fn causalize(
             solve_block(
                 arena,
                 &block_eqs,
-                &eqs,
+                eqs,
                 &block_vars,
                 limits,
                 temps,

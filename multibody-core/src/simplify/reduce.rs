@@ -138,13 +138,28 @@ impl SlotTable<'_> {
 /// Variables of a residual as slots (`Var` and `der` leaves; parameters and time are
 /// known).
 pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {
-    let mut leaves = Vec::new();
-    table.arena.leaves_into(e, &mut leaves);
-    leaves.retain(|&l| matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)));
-    let mut out: Vec<usize> = leaves.iter().map(|&l| table.slot(l)).collect();
+    let mut out = Vec::new();
+    incidence_into(table, e, &mut Vec::new(), &mut out);
+    out
+}
+
+/// [`incidence`] into `out` (cleared first; `leaves` is work space), for callers that
+/// reuse the buffers.
+pub(crate) fn incidence_into(
+    table: &mut SlotTable<'_>,
+    e: Id,
+    leaves: &mut Vec<Id>,
+    out: &mut Vec<usize>,
+) {
+    table.arena.leaves_into(e, leaves);
+    out.clear();
+    for &l in leaves.iter() {
+        if matches!(table.arena.node(l), Node::Var(_) | Node::Der(_)) {
+            out.push(table.slot(l));
+        }
+    }
     out.sort_unstable();
     out.dedup();
-    out
 }
 
 /// Inputs of the reduction.
@@ -218,9 +233,10 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         .map(|(residual, text)| ReducedEquation { residual, text })
         .collect();
     let mut graph = BipartiteGraph::new(0);
+    let (mut leaves, mut inc) = (Vec::new(), Vec::new());
     for eq in &eqs {
-        let inc = incidence(&mut table, eq.residual);
-        graph.add_equation(inc);
+        incidence_into(&mut table, eq.residual, &mut leaves, &mut inc);
+        graph.add_equation_from(&mut inc);
     }
     let (mut var_diff, mut implicit) = derivative_links(&mut table, derivative_map);
     // (Derivative rules may mention variables no equation does: they got slots too.)
@@ -434,7 +450,7 @@ fn configuration_dependent(
     eqs: &[ReducedEquation],
     level: &SelectionLevel,
 ) -> bool {
-    use crate::structure::blt::blt;
+    use crate::structure::blt::blt_flat;
     use crate::structure::matching::maximum_matching;
     let local: HashMap<Id, usize> = level
         .dummies
@@ -443,19 +459,18 @@ fn configuration_dependent(
         .map(|(k, &v)| (slots[v].leaf, k))
         .collect();
     let mut g = BipartiteGraph::new(level.dummies.len());
+    let (mut leaves, mut vars) = (Vec::new(), Vec::new());
     for &e in &level.equations {
-        let vars: Vec<usize> = arena
-            .leaves(eqs[e].residual)
-            .iter()
-            .filter_map(|l| local.get(l).copied())
-            .collect();
-        g.add_equation(vars);
+        arena.leaves_into(eqs[e].residual, &mut leaves);
+        vars.clear();
+        vars.extend(leaves.iter().filter_map(|l| local.get(l).copied()));
+        g.add_equation_from(&mut vars);
     }
     let m = maximum_matching(&g, None, None);
     if !m.is_perfect() {
         return true;
     }
-    blt(&g, &m).iter().any(|block| {
+    blt_flat(&g, &m).iter().any(|block| {
         if block.eqs.len() > 1 {
             return true;
         }

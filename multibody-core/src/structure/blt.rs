@@ -5,8 +5,8 @@
 //! connected components of that graph, in Tarjan's completion order, are the
 //! blocks in evaluation order (dependencies first).
 
-use super::BipartiteGraph;
 use super::matching::Matching;
+use super::{BipartiteGraph, Rows};
 
 /// One block: `vars[i]` is matched to `eqs[i]`; equations ascending.
 #[derive(Clone, Debug, PartialEq)]
@@ -15,6 +15,45 @@ pub struct Block {
     pub eqs: Vec<usize>,
     /// The variable matched to each equation of `eqs`, position by position.
     pub vars: Vec<usize>,
+}
+
+/// All blocks in evaluation order, stored flat (two allocations in all instead of two
+/// per block): block `k` is `eqs[k]` with `vars[k]`.
+#[derive(Clone, Debug, Default)]
+pub struct Blocks {
+    /// Equations of each block, ascending.
+    pub eqs: Rows,
+    /// The variable matched to each equation of the block, position by position.
+    pub vars: Rows,
+}
+
+/// One block of [`Blocks`], borrowed.
+#[derive(Clone, Copy, Debug)]
+pub struct BlockRef<'a> {
+    /// Equations of the block, ascending.
+    pub eqs: &'a [usize],
+    /// The variable matched to each equation of `eqs`.
+    pub vars: &'a [usize],
+}
+
+impl Blocks {
+    /// Number of blocks.
+    pub fn len(&self) -> usize {
+        self.eqs.len()
+    }
+
+    /// Whether there is no block.
+    pub fn is_empty(&self) -> bool {
+        self.eqs.is_empty()
+    }
+
+    /// The blocks in evaluation order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = BlockRef<'_>> + '_ {
+        self.eqs
+            .iter()
+            .zip(self.vars.iter())
+            .map(|(eqs, vars)| BlockRef { eqs, vars })
+    }
 }
 
 const UNVISITED: usize = usize::MAX;
@@ -33,6 +72,17 @@ fn successor(g: &BipartiteGraph, m: &Matching, e: usize, pos: usize) -> Option<u
 /// Blocks in evaluation order: every block only uses variables solved in earlier blocks or
 /// itself (or not allowed/known ones). Only matched equations take part. Deterministic.
 pub fn blt(g: &BipartiteGraph, m: &Matching) -> Vec<Block> {
+    blt_flat(g, m)
+        .iter()
+        .map(|b| Block {
+            eqs: b.eqs.to_vec(),
+            vars: b.vars.to_vec(),
+        })
+        .collect()
+}
+
+/// [`blt`], stored flat.
+pub fn blt_flat(g: &BipartiteGraph, m: &Matching) -> Blocks {
     let n = g.n_eqs();
     let mut index = vec![UNVISITED; n];
     let mut low = vec![0usize; n];
@@ -41,7 +91,8 @@ pub fn blt(g: &BipartiteGraph, m: &Matching) -> Vec<Block> {
     // call stack frames: (equation, next variable position)
     let mut call: Vec<(usize, usize)> = Vec::new();
     let mut counter = 0usize;
-    let mut blocks = Vec::new();
+    let mut blocks = Blocks::default();
+    let (mut eqs, mut vars) = (Vec::new(), Vec::new());
 
     for root in 0..n {
         if index[root] != UNVISITED || m.eq_to_var[root].is_none() {
@@ -80,7 +131,7 @@ pub fn blt(g: &BipartiteGraph, m: &Matching) -> Vec<Block> {
                 low[parent] = low[parent].min(low[e]);
             }
             if low[e] == index[e] {
-                let mut eqs = Vec::new();
+                eqs.clear();
                 loop {
                     let x = scc_stack.pop().expect("Tarjan stack holds the component");
                     on_stack[x] = false;
@@ -90,11 +141,13 @@ pub fn blt(g: &BipartiteGraph, m: &Matching) -> Vec<Block> {
                     }
                 }
                 eqs.sort_unstable();
-                let vars = eqs
-                    .iter()
-                    .map(|&x| m.eq_to_var[x].expect("only matched equations are visited"))
-                    .collect();
-                blocks.push(Block { eqs, vars });
+                vars.clear();
+                vars.extend(
+                    eqs.iter()
+                        .map(|&x| m.eq_to_var[x].expect("only matched equations are visited")),
+                );
+                blocks.eqs.push(&eqs);
+                blocks.vars.push(&vars);
             }
         }
     }

@@ -43,11 +43,17 @@ impl BipartiteGraph {
     /// Adds an equation containing `vars` (sorted and deduplicated here) and
     /// returns its index. Variables `>= n_vars` grow `n_vars` accordingly.
     pub fn add_equation(&mut self, mut vars: Vec<usize>) -> usize {
+        self.add_equation_from(&mut vars)
+    }
+
+    /// [`Self::add_equation`] from a buffer the caller reuses (sorted and deduplicated
+    /// in place).
+    pub fn add_equation_from(&mut self, vars: &mut Vec<usize>) -> usize {
         vars.sort_unstable();
         vars.dedup();
         let needed = vars.last().map_or(0, |&last| last + 1);
         self.n_vars = self.n_vars.max(needed);
-        self.eq_vars.push(&vars);
+        self.eq_vars.push(vars);
         self.eq_vars.len() - 1
     }
 
