@@ -23,7 +23,7 @@
 use super::EvalError;
 use super::elimination_queue::EliminationQueue;
 use super::forward::forward_core;
-use super::sparsity::{Coloring, MAX_LANES, color_columns, merge, rows_to_csc};
+use super::sparsity::{Coloring, MAX_LANES, color_columns, merge_into, rows_to_csc};
 use super::tape::{Op, Tape, Workspace, solve_linear};
 
 /// Entries an elimination may add and still be made (default of
@@ -211,6 +211,8 @@ fn choose_cuts(
         }
     }
     let mut eliminated = vec![false; nv];
+    // Merges land here and swap into the list: allocations circulate.
+    let mut merged = Vec::new();
     while let Some((c, v)) = queue.pop() {
         let vu = v as usize;
         if eliminated[vu] {
@@ -227,12 +229,14 @@ fn choose_cuts(
         for &p in &ps {
             let list = &mut succs[p as usize];
             list.retain(|&x| x != v);
-            *list = merge(list, &ss);
+            merge_into(list, &ss, &mut merged);
+            std::mem::swap(list, &mut merged);
         }
         for &s in &ss {
             let list = &mut preds[s as usize];
             list.retain(|&x| x != v);
-            *list = merge(list, &ps);
+            merge_into(list, &ps, &mut merged);
+            std::mem::swap(list, &mut merged);
         }
         for &x in ps.iter().chain(&ss) {
             let xu = x as usize;
@@ -290,6 +294,15 @@ impl ExtendedJacobian {
                 c => vec![(n + c as usize) as u32],
             }
         };
+        // `acc` merged with register `r`'s columns, through the work buffer `next`.
+        let merge_leaf = |acc: &mut Vec<u32>, next: &mut Vec<u32>, r: u32, deps: &[Vec<u32>]| {
+            match cut_of[r as usize] {
+                NO_CUT => merge_into(acc, &deps[r as usize], next),
+                c => merge_into(acc, &[(n + c as usize) as u32], next),
+            }
+            std::mem::swap(acc, next);
+        };
+        let (mut acc, mut next): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
         let mut operands = Vec::new();
         for (i, &op) in tape.ops.iter().enumerate() {
             match op {
@@ -302,13 +315,15 @@ impl ExtendedJacobian {
                 Op::LinearSolve(s) => {
                     let k = tape.ls[s as usize].k;
                     for j in 0..k {
-                        let mut acc: Vec<u32> = linear_row_columns(tape, s, j)
-                            .into_iter()
-                            .map(|c| (n + cut_of[i + c] as usize) as u32)
-                            .collect();
+                        acc.clear();
+                        acc.extend(
+                            linear_row_columns(tape, s, j)
+                                .into_iter()
+                                .map(|c| (n + cut_of[i + c] as usize) as u32),
+                        );
                         acc.sort_unstable();
                         for r in linear_row_operands(tape, s, j) {
-                            acc = merge(&acc, &leaf(r, &deps));
+                            merge_leaf(&mut acc, &mut next, r, &deps);
                         }
                         rows[n + cut_of[i + j] as usize] =
                             acc.iter().map(|&c| c as usize).collect();
@@ -317,16 +332,16 @@ impl ExtendedJacobian {
                 _ => {
                     operands.clear();
                     op.for_each_operand(&tape.ls, |r| operands.push(r));
-                    let mut acc: Vec<u32> = Vec::new();
+                    acc.clear();
                     for &r in &operands {
-                        acc = merge(&acc, &leaf(r, &deps));
+                        merge_leaf(&mut acc, &mut next, r, &deps);
                     }
                     if cut_of[i] != NO_CUT {
                         let own = (n + cut_of[i] as usize) as u32;
-                        let row = merge(&acc, &[own]);
-                        rows[own as usize] = row.iter().map(|&c| c as usize).collect();
+                        merge_into(&acc, &[own], &mut next);
+                        rows[own as usize] = next.iter().map(|&c| c as usize).collect();
                     }
-                    deps[i] = acc;
+                    deps[i] = acc.clone();
                 }
             }
         }

@@ -4,15 +4,19 @@
 use super::EvalError;
 use super::tape::{Op, Tape, Workspace};
 
-/// Merges two sorted, duplicate-free vectors.
-pub(crate) fn merge(a: &[u32], b: &[u32]) -> Vec<u32> {
-    if a.is_empty() {
-        return b.to_vec();
+/// Merges two sorted, duplicate-free vectors into `out` (cleared first), for callers
+/// that reuse it.
+pub(crate) fn merge_into(a: &[u32], b: &[u32], out: &mut Vec<u32>) {
+    out.clear();
+    if a.is_empty() || a == b {
+        out.extend_from_slice(b);
+        return;
     }
-    if b.is_empty() || a == b {
-        return a.to_vec();
+    if b.is_empty() {
+        out.extend_from_slice(a);
+        return;
     }
-    let mut out = Vec::with_capacity(a.len() + b.len());
+    out.reserve(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
         match a[i].cmp(&b[j]) {
@@ -33,7 +37,6 @@ pub(crate) fn merge(a: &[u32], b: &[u32]) -> Vec<u32> {
     }
     out.extend_from_slice(&a[i..]);
     out.extend_from_slice(&b[j..]);
-    out
 }
 
 impl Tape {
@@ -95,13 +98,17 @@ impl Tape {
         for &o in self.outputs.iter().take(n_outputs) {
             last_use[o as usize] = KEEP;
         }
-        let union = |sets: &[Vec<u32>], operands: &[u32]| {
-            let mut acc: Vec<u32> = Vec::new();
+        // The union of the operands' sets, merged in two work buffers and copied out
+        // once (one allocation per node, none for an empty set).
+        let (mut acc, mut next): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
+        let mut union = |sets: &[Vec<u32>], operands: &[u32]| -> Vec<u32> {
+            acc.clear();
             for &r in operands {
-                acc = merge(&acc, &sets[r as usize]);
-                acc.truncate(cap);
+                merge_into(&acc, &sets[r as usize], &mut next);
+                next.truncate(cap);
+                std::mem::swap(&mut acc, &mut next);
             }
-            acc
+            acc.clone()
         };
         let mut sets: Vec<Vec<u32>> = vec![Vec::new(); len];
         let mut operands: Vec<u32> = Vec::new();
@@ -417,5 +424,25 @@ impl DaeJacobian {
             c0 += lanes;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::merge_into;
+
+    #[test]
+    fn merging_keeps_sets_sorted_without_duplicates_and_reuses_the_buffer() {
+        let mut out = vec![99, 98];
+        merge_into(&[1, 3, 5], &[2, 3, 6], &mut out);
+        assert_eq!(out, [1, 2, 3, 5, 6]);
+        merge_into(&[], &[4, 7], &mut out);
+        assert_eq!(out, [4, 7]);
+        merge_into(&[4, 7], &[], &mut out);
+        assert_eq!(out, [4, 7]);
+        merge_into(&[4, 7], &[4, 7], &mut out);
+        assert_eq!(out, [4, 7]);
+        merge_into(&[8], &[1, 2], &mut out);
+        assert_eq!(out, [1, 2, 8]);
     }
 }

@@ -232,15 +232,7 @@ pub fn causalize(
         } else {
             let block_eqs: Vec<Id> = eqs.iter().map(|&e| equations[e]).collect();
             let block_vars: Vec<Id> = vars.iter().map(|&v| unknowns[v]).collect();
-            solve_block(
-                arena,
-                &block_eqs,
-                eqs,
-                &block_vars,
-                limits,
-                temps,
-                &mut out,
-            );
+            solve_block(arena, &block_eqs, eqs, &block_vars, limits, temps, &mut out);
         }
     }
     super::reroot::reroot_iteration_variables(arena, &mut out, temps.tear_priority, temps.params);
