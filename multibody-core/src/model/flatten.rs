@@ -310,27 +310,15 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         }
     }
     for i in 0..f.flat.variables.len() {
-        let start = match f.flat.variables[i].start {
-            Some(e) => {
-                let origin = Origin::FixedStart {
-                    var: f.flat.variables[i].name.clone(),
-                };
-                f.translate(e, &origin)
-            }
-            None => None,
-        };
+        let start = f.translate_binding(f.flat.variables[i].start, |flat| {
+            flat.variables[i].name.clone()
+        });
         f.flat.starts.push(start);
     }
     for i in 0..f.flat.parameters.len() {
-        let val = match f.flat.parameters[i].value {
-            Some(e) => {
-                let origin = Origin::FixedStart {
-                    var: f.flat.parameters[i].name.clone(),
-                };
-                f.translate(e, &origin)
-            }
-            None => None,
-        };
+        let val = f.translate_binding(f.flat.parameters[i].value, |flat| {
+            flat.parameters[i].name.clone()
+        });
         let fixed = f.flat.parameters[i].fixed;
         if val.is_none() && fixed {
             let name = f.flat.parameters[i].name.to_string();
@@ -392,6 +380,21 @@ impl Flattener<'_> {
                 connected_inside: false,
             });
         }
+    }
+
+    /// A start value or parameter binding in the local arena; `name` gives the name of
+    /// its variable or parameter for messages (read only when there is a value, so
+    /// declarations without one touch no name).
+    fn translate_binding(
+        &mut self,
+        value: Option<Expr>,
+        name: impl FnOnce(&FlatSystem) -> Arc<str>,
+    ) -> Option<Id> {
+        let e = value?;
+        let origin = Origin::FixedStart {
+            var: name(&self.flat),
+        };
+        self.translate(e, &origin)
     }
 
     /// `lhs - rhs` of an equation in the local arena (built there, so the global lock

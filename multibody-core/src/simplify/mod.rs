@@ -143,11 +143,10 @@ pub fn structural_simplify_with(
         parameters: &flat.parameters,
     };
     let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
-    let names: Vec<Arc<str>> = flat.variables.iter().map(|v| v.name.clone()).collect();
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
-            names: &names,
+            variables: &flat.variables,
             priority: &priority,
             kept: &kept,
             derivative_map: &aliases.derivative_map,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
-use crate::model::EquationText;
+use crate::model::{EquationText, Variable};
 use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{
     SelectionError, SelectionLevel, StateRank, dummy_derivatives_with_intermediates,
@@ -93,7 +93,8 @@ fn below_slot(slot_of: &IdIndex, leaf: Id) -> usize {
 /// Builds slots for the leaves of the equations and for every kept variable.
 pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,
-    pub names: &'a [Arc<str>],
+    /// The flat variables (for their names).
+    pub variables: &'a [Variable],
     pub slots: Vec<Slot>,
     /// The slot of each leaf, indexed by the leaf's id.
     pub slot_of: IdIndex,
@@ -114,7 +115,7 @@ impl SlotTable<'_> {
             n => panic!("slot of a non-variable leaf {n:?}"),
         };
         let name: Arc<str> = match self.arena.node(leaf) {
-            Node::Var(_) => self.names[var].clone(),
+            Node::Var(_) => self.variables[var].name.clone(),
             _ => {
                 let inner = match self.arena.node(leaf) {
                     Node::Der(i) => *i,
@@ -165,8 +166,8 @@ pub(crate) fn incidence_into(
 /// Inputs of the reduction.
 pub(crate) struct ReduceInput<'a> {
     pub arena: &'a mut Arena,
-    /// Flat variable names.
-    pub names: &'a [Arc<str>],
+    /// The flat variables (for their names).
+    pub variables: &'a [Variable],
     /// State priority and whether each flat variable is kept (not eliminated).
     pub priority: &'a [f64],
     pub kept: &'a [bool],
@@ -207,7 +208,7 @@ pub(crate) fn with_reduced_form(
 pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, SimplifyError> {
     let ReduceInput {
         arena,
-        names,
+        variables,
         priority,
         kept,
         derivative_map,
@@ -218,7 +219,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     } = input;
     let mut table = SlotTable {
         arena,
-        names,
+        variables,
         slots: Vec::new(),
         slot_of: IdIndex::default(),
     };

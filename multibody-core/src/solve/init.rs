@@ -11,6 +11,7 @@
 //! sparse Jacobian; other start values serve as guesses.
 
 use std::collections::VecDeque;
+use std::sync::Arc;
 
 use crate::hash::HashMap;
 use crate::model::EquationText;
@@ -275,9 +276,8 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .iter()
         .map(|&(r, _)| Row::Expr(r))
         .collect();
-    let unnamed: std::sync::Arc<str> = std::sync::Arc::from("");
-    let observed: Vec<(std::sync::Arc<str>, Id)> =
-        unknowns.iter().map(|&l| (unnamed.clone(), l)).collect();
+    let unnamed: Arc<str> = Arc::from("");
+    let observed: Vec<(Arc<str>, Id)> = unknowns.iter().map(|&l| (unnamed.clone(), l)).collect();
     let compiled = compile_dae(
         &mut arena,
         &DaeSpec {
