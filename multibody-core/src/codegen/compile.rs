@@ -24,6 +24,9 @@ fn hash_op(op: &Op) -> u64 {
     crate::hash::anchored_hash(anchor, high)
 }
 
+/// Tags a value of `TapeBuilder::bound` as an input slot not emitted yet.
+const PENDING: u32 = 1 << 31;
+
 /// A hash map with the fast hasher.
 pub(crate) type FastMap<K, V> = crate::hash::HashMap<K, V>;
 
@@ -89,8 +92,19 @@ pub struct TapeBuilder<'a> {
     consts: Vec<f64>,
     const_index: FastMap<u64, u32>,
     /// Registers of the emitted instructions, placed by `hash_op` (value numbering);
-    /// 4 bytes per entry, the instruction itself is read from `ops`.
+    /// 4 bytes per entry, the instruction itself is read from `ops`. Inputs and
+    /// constants are numbered densely instead (`input_regs`, `const_regs`).
     numbering: HashTable<u32>,
+    /// The register of each input slot once emitted (`IdMap::NONE` before).
+    input_regs: Vec<u32>,
+    /// The register of each constant slot once emitted (`IdMap::NONE` before).
+    const_regs: Vec<u32>,
+    /// One bit per register: set when its instruction is a constant (so folding does
+    /// not read the instructions of its operands).
+    is_const: Vec<u64>,
+    /// Registers bound to nodes, or `PENDING | slot` for a node bound to an input slot
+    /// whose instruction is emitted at its first use: an input then sits next to the
+    /// instructions that read it, and an unused one costs nothing.
     bound: IdMap,
     memo: IdMap,
     ls: Vec<LsInfo>,
@@ -110,6 +124,9 @@ impl<'a> TapeBuilder<'a> {
             consts: Vec::new(),
             const_index: FastMap::default(),
             numbering: HashTable::new(),
+            input_regs: vec![IdMap::NONE; n_inputs],
+            const_regs: Vec::new(),
+            is_const: Vec::new(),
             bound: IdMap::new(arena.len()),
             memo: IdMap::new(arena.len()),
             ls: Vec::new(),
@@ -149,8 +166,7 @@ impl<'a> TapeBuilder<'a> {
             "TapeBuilder::input: slot {slot} out of range ({} inputs)",
             self.n_inputs
         );
-        let r = self.emit(Op::Input(slot as u32));
-        self.bind(leaf, r);
+        self.bind(leaf, PENDING | slot as u32);
     }
 
     /// Adds a statement, executed after the earlier ones. Fails if an expression uses a
@@ -437,6 +453,7 @@ impl<'a> TapeBuilder<'a> {
 
     /// Binds `id` to register `r`; compiled expressions that might have used an older
     /// binding are forgotten.
+    /// `r` may be `PENDING | slot` (see `bound`).
     fn bind(&mut self, id: Id, r: u32) {
         if self.bound.get(id) == Some(r) {
             return;
@@ -447,9 +464,44 @@ impl<'a> TapeBuilder<'a> {
         self.bound.insert(id, r);
     }
 
+    /// The register of `id` if it is compiled (a node bound to an input that is not
+    /// emitted yet is not).
     #[inline]
     fn lookup(&self, id: Id) -> Option<u32> {
-        self.bound.get(id).or_else(|| self.memo.get(id))
+        match self.bound.get(id) {
+            Some(r) if r & PENDING == 0 => Some(r),
+            Some(_) => None,
+            None => self.memo.get(id),
+        }
+    }
+
+    /// Emits the input of a node bound to one but not yet used; returns its register.
+    #[inline]
+    fn resolve_pending(&mut self, id: Id) -> Option<u32> {
+        match self.bound.get(id) {
+            Some(p) if p & PENDING != 0 => {
+                let r = self.emit(Op::Input(p & !PENDING));
+                self.bound.insert(id, r);
+                Some(r)
+            }
+            _ => None,
+        }
+    }
+
+    /// Appends `op` without numbering it; returns its register.
+    #[inline]
+    fn push_op(&mut self, op: Op) -> u32 {
+        let r = self.ops.len() as u32;
+        assert!(r < PENDING, "tape too long");
+        if let Op::Const(_) = op {
+            let w = r as usize / 64;
+            if w >= self.is_const.len() {
+                self.is_const.resize(w + 1, 0);
+            }
+            self.is_const[w] |= 1 << (r % 64);
+        }
+        self.ops.push(op);
+        r
     }
 
     #[inline]
@@ -460,6 +512,13 @@ impl<'a> TapeBuilder<'a> {
     /// The value of register `r` if it is a constant.
     #[inline]
     pub(super) fn const_value(&self, r: u32) -> Option<f64> {
+        let bit = self
+            .is_const
+            .get(r as usize / 64)
+            .is_some_and(|w| w & (1 << (r % 64)) != 0);
+        if !bit {
+            return None;
+        }
         match self.ops[r as usize] {
             Op::Const(k) => Some(self.consts[k as usize]),
             _ => None,
@@ -570,6 +629,27 @@ impl<'a> TapeBuilder<'a> {
     /// Emits `op` unless an identical instruction exists or it folds; returns its
     /// register.
     pub(super) fn emit(&mut self, op: Op) -> u32 {
+        match op {
+            Op::Input(s) => {
+                let r = self.input_regs[s as usize];
+                if r != IdMap::NONE {
+                    return r;
+                }
+                let r = self.push_op(op);
+                self.input_regs[s as usize] = r;
+                return r;
+            }
+            Op::Const(k) => {
+                let r = self.const_regs[k as usize];
+                if r != IdMap::NONE {
+                    return r;
+                }
+                let r = self.push_op(op);
+                self.const_regs[k as usize] = r;
+                return r;
+            }
+            _ => {}
+        }
         if let Some(r) = self.fold(op) {
             return r;
         }
@@ -583,8 +663,7 @@ impl<'a> TapeBuilder<'a> {
         if let Some(&r) = self.numbering.find(h, |&i| ops[i as usize] == op) {
             return r;
         }
-        let r = self.ops.len() as u32;
-        self.ops.push(op);
+        let r = self.push_op(op);
         let ops = &self.ops;
         self.numbering
             .insert_unique(h, r, |&i| hash_op(&ops[i as usize]));
@@ -596,6 +675,7 @@ impl<'a> TapeBuilder<'a> {
         let k = *self.const_index.entry(c.to_bits()).or_insert(next);
         if k == next {
             self.consts.push(c);
+            self.const_regs.push(IdMap::NONE);
         }
         k
     }
@@ -607,7 +687,7 @@ impl<'a> TapeBuilder<'a> {
 
     /// Compiles `root` (post-order with an explicit stack); returns its register.
     fn compile(&mut self, root: Id) -> Result<u32, CodegenError> {
-        if let Some(r) = self.lookup(root) {
+        if let Some(r) = self.lookup(root).or_else(|| self.resolve_pending(root)) {
             return Ok(r);
         }
         let arena = self.arena;
@@ -616,7 +696,7 @@ impl<'a> TapeBuilder<'a> {
         stack.push((root, false));
         let mut result = Ok(());
         while let Some((id, expanded)) = stack.pop() {
-            if self.lookup(id).is_some() {
+            if self.lookup(id).is_some() || self.resolve_pending(id).is_some() {
                 continue;
             }
             let node = arena.node(id);

@@ -584,6 +584,48 @@ fn assignments_and_rebinding() {
 }
 
 #[test]
+fn inputs_are_emitted_once_at_first_use_and_rebinding_holds() {
+    let mut a = Arena::new();
+    let x = a.var(0);
+    let y = a.var(1);
+    let xy = a.mul(x, y);
+    let s = a.f1(Func1::Sin, xy);
+    let e = a.scale(3.0, x);
+    let inputs = |tape: &Tape| {
+        tape.ops
+            .iter()
+            .filter(|op| matches!(op, Op::Input(_)))
+            .count()
+    };
+    // A non-leaf bound to an input stands for the whole expression: sin reads slot 2
+    // and neither x nor y is read.
+    let mut b = TapeBuilder::new(&a, 4);
+    b.input(x, 0);
+    b.input(y, 1);
+    b.input(xy, 2);
+    b.output(s).unwrap();
+    // Rebinding x to slot 3 affects only what is compiled afterwards.
+    b.output(e).unwrap();
+    b.input(x, 3);
+    b.output(e).unwrap();
+    let tape = b.build();
+    assert_eq!(tape.dependencies(), vec![vec![2], vec![0], vec![3]]);
+    assert_eq!(inputs(&tape), 3);
+    let mut ws = tape.workspace();
+    let mut out = [0.0; 3];
+    tape.eval(&[1.0, 5.0, 0.5, 2.0], &mut ws, &mut out).unwrap();
+    assert_eq!(out, [0.5f64.sin(), 3.0, 6.0]);
+    // Two leaves bound to one slot read one instruction, so their product is a square.
+    let mut b = TapeBuilder::new(&a, 1);
+    b.input(x, 0);
+    b.input(y, 0);
+    b.output(xy).unwrap();
+    let tape = b.build();
+    assert_eq!(inputs(&tape), 1);
+    assert_eq!(tape.len(), 2, "{:?}", tape.ops);
+}
+
+#[test]
 fn deep_expressions_compile_without_recursion() {
     let mut a = Arena::new();
     let x = a.var(0);
