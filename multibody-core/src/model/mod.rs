@@ -6,6 +6,7 @@ mod connection_graph;
 mod error;
 mod flatten;
 mod graph;
+mod shared_text;
 mod system;
 mod text;
 mod typed;
@@ -15,6 +16,7 @@ pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
+pub use shared_text::SharedText;
 pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};
 pub use text::EquationText;
 pub use typed::{

@@ -145,7 +145,11 @@ impl<R: Into<crate::expr::Vec3>> Equate<R> for Signal3 {
 }
 
 /// Declares the three variables of a vector signal connector.
-pub fn declare_signal3(s: &mut System, kind: VarKind, description: &str) -> Signal3 {
+pub fn declare_signal3(
+    s: &mut System,
+    kind: VarKind,
+    description: impl Into<super::SharedText>,
+) -> Signal3 {
     let value =
         crate::expr::Vec3::declare(s, Variable::new("").kind(kind).description(description));
     Signal3 {
@@ -295,7 +299,11 @@ impl System {
 }
 
 /// Declares the single variable of a signal connector (the connector itself).
-pub fn declare_signal(s: &mut System, kind: VarKind, description: &str) -> Signal {
+pub fn declare_signal(
+    s: &mut System,
+    kind: VarKind,
+    description: impl Into<super::SharedText>,
+) -> Signal {
     let v = Variable::new("").kind(kind).description(description);
     Signal(s.variable(v))
 }

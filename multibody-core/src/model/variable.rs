@@ -4,6 +4,8 @@ use std::sync::Arc;
 
 use crate::expr::Expr;
 
+use super::SharedText;
+
 /// What a variable is to connections.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VarKind {
@@ -63,9 +65,9 @@ pub struct Variable {
     /// Initial guess for iterations, when different from the start value (default: none).
     pub guess: Option<f64>,
     /// Description for documentation and messages (default: empty).
-    pub description: Arc<str>,
+    pub description: SharedText,
     /// Unit, e.g. `rad` (default: empty).
-    pub unit: Arc<str>,
+    pub unit: SharedText,
     /// Preference for being chosen as a state: higher stays a state (default 0).
     pub state_priority: f64,
     /// Role in connections (default: [`VarKind::Internal`]).
@@ -82,8 +84,8 @@ impl Variable {
             start: None,
             fixed: false,
             guess: None,
-            description: Arc::default(),
-            unit: Arc::default(),
+            description: SharedText::default(),
+            unit: SharedText::default(),
             state_priority: 0.0,
             kind: VarKind::Internal,
             symbol: None,
@@ -109,13 +111,13 @@ impl Variable {
     }
 
     /// Sets the description.
-    pub fn description(mut self, text: impl Into<Arc<str>>) -> Self {
+    pub fn description(mut self, text: impl Into<SharedText>) -> Self {
         self.description = text.into();
         self
     }
 
     /// Sets the unit.
-    pub fn unit(mut self, unit: impl Into<Arc<str>>) -> Self {
+    pub fn unit(mut self, unit: impl Into<SharedText>) -> Self {
         self.unit = unit.into();
         self
     }
@@ -153,9 +155,9 @@ pub struct Parameter {
     /// `fixed=false`), its value only a guess (default: true).
     pub fixed: bool,
     /// Description (default: empty).
-    pub description: Arc<str>,
+    pub description: SharedText,
     /// Unit (default: empty).
-    pub unit: Arc<str>,
+    pub unit: SharedText,
     /// `true` folds the value into the equations at `structural_simplify` (MSL
     /// `Evaluate=true`): zero offsets and switches then vanish from the compiled code,
     /// and the parameter can no longer be changed without simplifying again
@@ -172,8 +174,8 @@ impl Parameter {
             name: name.into(),
             value: Some(value.into()),
             fixed: true,
-            description: Arc::default(),
-            unit: Arc::default(),
+            description: SharedText::default(),
+            unit: SharedText::default(),
             evaluate: false,
             symbol: None,
         }
@@ -193,13 +195,13 @@ impl Parameter {
     }
 
     /// Sets the description.
-    pub fn description(mut self, text: impl Into<Arc<str>>) -> Self {
+    pub fn description(mut self, text: impl Into<SharedText>) -> Self {
         self.description = text.into();
         self
     }
 
     /// Sets the unit.
-    pub fn unit(mut self, unit: impl Into<Arc<str>>) -> Self {
+    pub fn unit(mut self, unit: impl Into<SharedText>) -> Self {
         self.unit = unit.into();
         self
     }
