@@ -1,4 +1,50 @@
-//! Name suggestions for messages about unknown names.
+//! Names: lookup by name, and suggestions for messages about unknown names.
+
+use std::sync::{Arc, OnceLock};
+
+use crate::hash::HashMap;
+
+/// A list of names with a lookup by name that is built on the first lookup, so a
+/// system compiled once and solved many times hashes its names once, and one that is
+/// never asked for a name by its text never hashes them at all.
+#[derive(Debug, Default)]
+pub struct NameIndex {
+    names: Vec<Arc<str>>,
+    index: OnceLock<HashMap<Arc<str>, usize>>,
+}
+
+impl NameIndex {
+    /// The index of `names` (the first of equal names wins a lookup).
+    pub fn new(names: Vec<Arc<str>>) -> Self {
+        NameIndex {
+            names,
+            index: OnceLock::new(),
+        }
+    }
+
+    /// The names, in order.
+    pub fn names(&self) -> &[Arc<str>] {
+        &self.names
+    }
+
+    /// The position of `name`.
+    pub fn position(&self, name: &str) -> Option<usize> {
+        let index = self.index.get_or_init(|| {
+            let mut map = HashMap::default();
+            map.reserve(self.names.len());
+            for (i, n) in self.names.iter().enumerate() {
+                map.entry(n.clone()).or_insert(i);
+            }
+            map
+        });
+        index.get(name).copied()
+    }
+
+    /// Up to `n` names closest to `name` (see [`closest`]).
+    pub fn closest(&self, name: &str, n: usize) -> Vec<String> {
+        closest(name, self.names.iter().map(|s| &**s), n)
+    }
+}
 
 /// Edit distance between two strings (Levenshtein, by characters).
 pub fn edit_distance(a: &str, b: &str) -> usize {
@@ -72,5 +118,20 @@ mod tests {
             list(&["a".into(), "b".into(), "c".into()], 2),
             "a, b, ... (1 more)"
         );
+    }
+
+    #[test]
+    fn name_index_finds_positions_and_suggests() {
+        let names: Vec<Arc<str>> = ["j1.phi", "j1.w", "j2.s", "j1.phi"]
+            .iter()
+            .map(|&s| Arc::from(s))
+            .collect();
+        let index = NameIndex::new(names);
+        assert_eq!(index.position("j2.s"), Some(2));
+        // The first of equal names wins.
+        assert_eq!(index.position("j1.phi"), Some(0));
+        assert_eq!(index.position("j2.v"), None);
+        assert_eq!(index.closest("j2.v", 1), vec!["j2.s"]);
+        assert_eq!(index.names().len(), 4);
     }
 }

@@ -78,8 +78,8 @@ pub struct CompiledDae {
     /// Every observable variable, one output each, named by [`Self::observed_names`]
     /// (shared by every problem and solution made from this system).
     pub observed: Arc<Tape>,
-    /// Names of the outputs of [`Self::observed`] (shared like it).
-    pub observed_names: Arc<Vec<Arc<str>>>,
+    /// Names of the outputs of [`Self::observed`], with their lookup (shared like it).
+    pub observed_names: Arc<crate::names::NameIndex>,
 }
 
 /// What the code generator needs to know about a system.
@@ -193,7 +193,7 @@ pub(crate) fn compile_dae(
         observed_names.push(name.clone());
     }
     let observed = Arc::new(b.build());
-    let observed_names = Arc::new(observed_names);
+    let observed_names = Arc::new(crate::names::NameIndex::new(observed_names));
     Ok(CompiledDae {
         layout,
         residual,

@@ -353,6 +353,7 @@ pub fn structural_simplify_with(
         never_tear: never_tear.clone(),
         variables,
         parameters,
+        parameter_index: std::sync::OnceLock::new(),
         evaluated_parameters,
         parameter_values,
         starts,

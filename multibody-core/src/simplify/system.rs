@@ -176,6 +176,9 @@ pub struct SimplifiedSystem {
     pub(crate) arena: Arena,
     pub(crate) variables: Vec<Variable>,
     pub(crate) parameters: Vec<Parameter>,
+    /// The names of `parameters` with their lookup, built for the first solution and
+    /// shared by every later one.
+    pub(crate) parameter_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
     /// Per parameter: whether its value was folded in at compile time.
     pub(crate) evaluated_parameters: Vec<bool>,
     /// Parameter bindings (expressions of other parameters) per parameter.
@@ -322,6 +325,16 @@ impl SimplifiedSystem {
         self.parameters.iter().map(|p| p.name.to_string()).collect()
     }
 
+    /// The names of the tunable parameters with their lookup (built once, shared).
+    pub(crate) fn parameter_index(&self) -> std::sync::Arc<crate::names::NameIndex> {
+        self.parameter_index
+            .get_or_init(|| {
+                let names = self.parameters.iter().map(|p| p.name.clone()).collect();
+                std::sync::Arc::new(crate::names::NameIndex::new(names))
+            })
+            .clone()
+    }
+
     /// Names of the parameters whose values were folded into the equations at compile
     /// time (marked `evaluate`, or all with
     /// [`SimplifyOptions::evaluate_parameters`](super::SimplifyOptions)); a problem
@@ -340,6 +353,7 @@ impl SimplifiedSystem {
     pub fn variable_names(&self) -> Vec<String> {
         self.compiled
             .observed_names
+            .names()
             .iter()
             .map(|n| n.to_string())
             .collect()

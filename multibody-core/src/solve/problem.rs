@@ -2,7 +2,6 @@
 //! span, solved by IDA.
 
 use crate::hash::HashMap;
-use std::sync::Arc;
 
 use crate::Error;
 use crate::codegen::dae::{CompiledDae, InputLayout};
@@ -366,7 +365,7 @@ impl<'a> DaeProblem<'a> {
             c.observed_names.clone(),
             c.layout,
             self.params.clone(),
-            Arc::new(sys.parameters()),
+            sys.parameter_index(),
             sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
             t_out,
             u_out,

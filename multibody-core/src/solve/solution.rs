@@ -1,14 +1,13 @@
 //! The solution of a DAE problem: any variable of the model by name, at the output
 //! times or interpolated at any time, and CSV export.
 
-use crate::hash::HashMap;
 use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
 use crate::codegen::Tape;
 use crate::codegen::dae::InputLayout;
-use crate::names::closest;
+use crate::names::NameIndex;
 
 use super::error::SolutionError;
 use super::ida::IdaStats;
@@ -20,11 +19,12 @@ use super::problem::InitReport;
 pub struct Solution {
     model: String,
     observed: Arc<Tape>,
-    names: Arc<Vec<Arc<str>>>,
-    index: HashMap<Arc<str>, usize>,
+    /// Names of the observed outputs and their lookup, shared with the compiled system.
+    names: Arc<NameIndex>,
     layout: InputLayout,
     params: Vec<f64>,
-    parameter_names: Arc<Vec<String>>,
+    /// Names of the tunable parameters (the order of `params`), shared likewise.
+    parameter_names: Arc<NameIndex>,
     differential: Vec<bool>,
     t: Vec<f64>,
     u: Vec<f64>,
@@ -38,10 +38,10 @@ impl Solution {
     pub(crate) fn new(
         model: String,
         observed: Arc<Tape>,
-        names: Arc<Vec<Arc<str>>>,
+        names: Arc<NameIndex>,
         layout: InputLayout,
         params: Vec<f64>,
-        parameter_names: Arc<Vec<String>>,
+        parameter_names: Arc<NameIndex>,
         differential: Vec<bool>,
         t: Vec<f64>,
         u: Vec<f64>,
@@ -49,16 +49,10 @@ impl Solution {
         stats: IdaStats,
         init: InitReport,
     ) -> Solution {
-        let index = names
-            .iter()
-            .enumerate()
-            .map(|(i, n)| (n.clone(), i))
-            .collect();
         Solution {
             model,
             observed,
             names,
-            index,
             layout,
             params,
             parameter_names,
@@ -83,7 +77,7 @@ impl Solution {
 
     /// Names of every variable the solution can give.
     pub fn names(&self) -> &[Arc<str>] {
-        &self.names
+        self.names.names()
     }
 
     /// Integrator statistics.
@@ -106,22 +100,20 @@ impl Solution {
     /// problem's override, or the value computed at initialization (a rod length).
     pub fn parameter(&self, name: &str) -> Result<f64, SolutionError> {
         self.parameter_names
-            .iter()
-            .position(|p| p == name)
+            .position(name)
             .and_then(|k| self.params.get(k).copied())
             .ok_or_else(|| SolutionError::UnknownParameter {
                 name: name.to_string(),
-                suggestions: closest(name, self.parameter_names.iter().map(|s| s.as_str()), 3),
+                suggestions: self.parameter_names.closest(name, 3),
             })
     }
 
     fn lookup(&self, name: &str) -> Result<usize, SolutionError> {
-        self.index
-            .get(name)
-            .copied()
+        self.names
+            .position(name)
             .ok_or_else(|| SolutionError::UnknownVariable {
                 name: name.to_string(),
-                suggestions: closest(name, self.names.iter().map(|s| &**s), 3),
+                suggestions: self.names.closest(name, 3),
             })
     }
 
@@ -276,7 +268,7 @@ impl Solution {
         let path = path.as_ref();
         let all: Vec<&str>;
         let names = if names.is_empty() {
-            all = self.names.iter().map(|s| &**s).collect();
+            all = self.names.names().iter().map(|s| &**s).collect();
             &all[..]
         } else {
             names
