@@ -23,21 +23,23 @@ pub enum Origin {
     },
     /// Equal potentials (or signals) of two connected connectors.
     Connect {
-        /// The two variables made equal.
-        a: Arc<str>,
-        /// Second variable.
-        b: Arc<str>,
+        /// The first of the two variables made equal (its index in
+        /// [`FlatSystem::variables`]).
+        a: u32,
+        /// The second variable.
+        b: u32,
     },
     /// Zero sum of the flows of a connection set.
     FlowSum {
-        /// The flow variables of the set, each with whether it enters the sum negated
-        /// (a connector connected from outside its component).
-        flows: Vec<(Arc<str>, bool)>,
+        /// The flow variables of the set (indices in [`FlatSystem::variables`]), each
+        /// with whether it enters the sum negated (a connector connected from outside
+        /// its component).
+        flows: Vec<(u32, bool)>,
     },
     /// The flow of a connector that is connected nowhere is zero.
     UnconnectedFlow {
-        /// The flow variable.
-        flow: Arc<str>,
+        /// The flow variable (its index in [`FlatSystem::variables`]).
+        flow: u32,
     },
     /// Decided by the virtual connection graph (orientation propagation along a
     /// branch or connection, a loop closure residue, a root's equations).
@@ -127,31 +129,35 @@ impl FlatSystem {
 
     /// A readable description of an equation for messages.
     pub fn describe(&self, eq: &FlatEquation) -> String {
-        Self::describe_origin(&eq.origin)
+        Self::describe_origin(&self.variables, &eq.origin)
     }
 
-    /// A readable description of an equation of the given origin.
-    pub fn describe_origin(origin: &Origin) -> String {
+    /// A readable description of an equation of the given origin; `variables` are the
+    /// flat system's, which connection origins refer to by index.
+    pub fn describe_origin(variables: &[Variable], origin: &Origin) -> String {
+        let name = |v: u32| &*variables[v as usize].name;
         match origin {
             Origin::Component { path, equation } => {
                 let at = if path.is_empty() { "model" } else { path };
                 format!("{at}: {} = {}", equation.lhs, equation.rhs)
             }
-            Origin::Connect { a, b } => format!("connection: {a} = {b}"),
+            Origin::Connect { a, b } => format!("connection: {} = {}", name(*a), name(*b)),
             Origin::FlowSum { flows } => {
                 let terms: Vec<String> = flows
                     .iter()
-                    .map(|(n, negated)| {
-                        if *negated {
-                            format!("-{n}")
+                    .map(|&(v, negated)| {
+                        if negated {
+                            format!("-{}", name(v))
                         } else {
-                            n.to_string()
+                            name(v).to_string()
                         }
                     })
                     .collect();
                 format!("connection: {} = 0", terms.join(" + "))
             }
-            Origin::UnconnectedFlow { flow } => format!("unconnected flow: {flow} = 0"),
+            Origin::UnconnectedFlow { flow } => {
+                format!("unconnected flow: {} = 0", name(*flow))
+            }
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
             Origin::Graph { text, equation, .. } => {
                 format!("{text}: {} = {}", equation.lhs, equation.rhs)
@@ -534,8 +540,8 @@ impl Flattener<'_> {
                         self.flat.equations.push(FlatEquation {
                             residual: r,
                             origin: Origin::Connect {
-                                a: self.flat.variables[va].name.clone(),
-                                b: self.flat.variables[vb].name.clone(),
+                                a: va as u32,
+                                b: vb as u32,
                             },
                             lhs_var: None,
                         });
@@ -575,6 +581,7 @@ impl Flattener<'_> {
             }
             e.push(i);
         }
+        let mut terms = Vec::new();
         for r in set_order {
             let members = &sets[&r];
             let (c0, _) = elems[members[0]];
@@ -583,20 +590,19 @@ impl Flattener<'_> {
                 if self.connectors[c0].vars[k].1 != VarKind::Flow {
                     continue;
                 }
-                let mut terms = Vec::new();
-                let mut names = Vec::new();
+                terms.clear();
+                let mut flows = Vec::with_capacity(members.len());
                 for &m in members {
                     let (c, inside) = elems[m];
                     let v = self.connectors[c].vars[k].0;
                     let x = self.flat.arena.var(v as u32);
                     terms.push((if inside { 1.0 } else { -1.0 }, x));
-                    let n = &self.flat.variables[v].name;
-                    names.push((n.clone(), !inside));
+                    flows.push((v as u32, !inside));
                 }
                 let r = self.flat.arena.linear_combination(0.0, &terms);
                 self.flat.equations.push(FlatEquation {
                     residual: r,
-                    origin: Origin::FlowSum { flows: names },
+                    origin: Origin::FlowSum { flows },
                     lhs_var: None,
                 });
             }
@@ -612,9 +618,7 @@ impl Flattener<'_> {
                     let x = self.flat.arena.var(v as u32);
                     self.flat.equations.push(FlatEquation {
                         residual: x,
-                        origin: Origin::UnconnectedFlow {
-                            flow: self.flat.variables[v].name.clone(),
-                        },
+                        origin: Origin::UnconnectedFlow { flow: v as u32 },
                         lhs_var: None,
                     });
                 }

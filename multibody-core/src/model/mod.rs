@@ -18,7 +18,7 @@ pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
 pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};
-pub use text::EquationText;
+pub use text::{EquationText, FlatOrigins};
 pub use typed::{
     Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,
     TypedComponent, VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,

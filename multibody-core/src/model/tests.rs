@@ -80,6 +80,29 @@ fn connection_sets_give_potential_equalities_and_flow_sums() {
 }
 
 #[test]
+fn equation_texts_share_the_flat_equations_and_name_connection_variables() {
+    let mut flat = flatten(&two_resistors()).unwrap();
+    let expected: Vec<String> = flat.equations.iter().map(|e| flat.describe(e)).collect();
+    let variables = std::sync::Arc::new(std::mem::take(&mut flat.variables));
+    let n = flat.equations.len();
+    let origins = FlatOrigins::new(std::mem::take(&mut flat.equations), variables);
+    let texts: Vec<String> = (0..n)
+        .map(|k| EquationText::of(&origins, k).to_string())
+        .collect();
+    assert_eq!(texts, expected);
+    let k = texts
+        .iter()
+        .position(|t| t == "connection: r1.n.v = r2.p.v")
+        .expect("the potential equality of r1.n and r2.p");
+    let text = EquationText::of(&origins, k);
+    assert_eq!(
+        text.derivative().to_string(),
+        "d/dt[connection: r1.n.v = r2.p.v]"
+    );
+    assert_eq!(text.clone().to_string(), text.to_string());
+}
+
+#[test]
 fn unconnected_flow_is_zero_and_unbalance_names_variables() {
     let mut m = System::new("flat_open");
     m.add("r1", &Resistor(1.0));

@@ -32,7 +32,7 @@ pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
 use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::Id;
-use crate::model::{EquationText, System, check_balance, flatten};
+use crate::model::{EquationText, FlatOrigins, System, Variable, check_balance, flatten};
 
 use causalize::{Temporaries, causalize};
 use reduce::{ReduceInput, reduce};
@@ -108,15 +108,6 @@ pub fn structural_simplify_with(
     let kept_eqs: Vec<usize> = (0..flat.equations.len())
         .filter(|&e| !aliases.removed[e])
         .collect();
-    let equations: Vec<(Id, EquationText)> = kept_eqs
-        .iter()
-        .map(|&e| {
-            (
-                flat.equations[e].residual,
-                EquationText::of(&flat.equations[e].origin),
-            )
-        })
-        .collect();
     let definitions: Vec<bool> = kept_eqs
         .iter()
         .map(|&e| {
@@ -137,16 +128,24 @@ pub fn structural_simplify_with(
             (r, flat.describe(eq))
         })
         .collect();
+    // The variables and the equations' origins move into storage shared by the texts of
+    // all equations (no copy of an origin or a name per equation).
+    let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
+    let texts = FlatOrigins::new(std::mem::take(&mut flat.equations), variables.clone());
+    let equations: Vec<(Id, EquationText)> = kept_eqs
+        .iter()
+        .map(|&e| (texts.equations()[e].residual, EquationText::of(&texts, e)))
+        .collect();
     let starts = flat.starts.clone();
     let flat_names = crate::model::FlatNames {
-        variables: &flat.variables,
+        variables: &variables,
         parameters: &flat.parameters,
     };
     let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
-            variables: &flat.variables,
+            variables: &variables,
             priority: &priority,
             kept: &kept,
             derivative_map: &aliases.derivative_map,
@@ -174,8 +173,7 @@ pub fn structural_simplify_with(
         .iter()
         .map(|&(x, _)| flat.arena.var(x))
         .collect();
-    let tear_priority: HashMap<Id, f64> = flat
-        .variables
+    let tear_priority: HashMap<Id, f64> = variables
         .iter()
         .enumerate()
         .filter(|(_, v)| v.state_priority != 0.0)
@@ -278,7 +276,7 @@ pub fn structural_simplify_with(
 
     // Code generation.
     let t2 = Instant::now();
-    let observed = observed_outputs(&flat, &aliases.replaced, &reduced);
+    let observed = observed_outputs(&variables, &aliases.replaced, &reduced);
     let code_rows: Vec<Row> = rows
         .iter()
         .map(|r| match *r {
@@ -342,7 +340,6 @@ pub fn structural_simplify_with(
     let states = reduced.states.clone();
     // The flat model's vectors move into the result (no copy of every name).
     let crate::model::FlatSystem {
-        variables,
         parameters,
         parameter_values,
         arena,
@@ -379,18 +376,18 @@ pub fn structural_simplify_with(
 /// Every variable of the model (replaced ones by their expression) and every
 /// derivative slot, as observed outputs.
 fn observed_outputs(
-    flat: &crate::model::FlatSystem,
+    variables: &[Variable],
     replaced: &[Option<Id>],
     reduced: &reduce::Reduced,
 ) -> Vec<(Arc<str>, Id)> {
-    let mut out = Vec::with_capacity(flat.variables.len() + reduced.slots.len());
-    let mut var_leaf: Vec<Option<Id>> = vec![None; flat.variables.len()];
+    let mut out = Vec::with_capacity(variables.len() + reduced.slots.len());
+    let mut var_leaf: Vec<Option<Id>> = vec![None; variables.len()];
     for s in &reduced.slots {
         if s.order == 0 {
             var_leaf[s.var] = Some(s.leaf);
         }
     }
-    for (i, v) in flat.variables.iter().enumerate() {
+    for (i, v) in variables.iter().enumerate() {
         let e = match replaced[i] {
             Some(r) => r,
             None => var_leaf[i].expect("every kept variable has a slot"),

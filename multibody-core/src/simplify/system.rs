@@ -174,7 +174,8 @@ pub struct SimplifiedSystem {
     /// initialization system's tearing too.
     pub(crate) never_tear: crate::hash::HashSet<Id>,
     pub(crate) arena: Arena,
-    pub(crate) variables: Vec<Variable>,
+    /// The flat variables (shared with the texts of the equations).
+    pub(crate) variables: std::sync::Arc<Vec<Variable>>,
     pub(crate) parameters: Vec<Parameter>,
     /// The names of `parameters` with their lookup, built for the first solution and
     /// shared by every later one.
@@ -359,10 +360,17 @@ impl SimplifiedSystem {
             .collect()
     }
 
+    /// A readable name for a leaf: its slot's name, or how it displays.
     pub(crate) fn leaf_name(&self, leaf: Id) -> String {
+        self.leaf_name_in(&self.arena, leaf)
+    }
+
+    /// [`Self::leaf_name`] for a leaf of `arena`, an extension of this system's arena
+    /// (the initialization adds its own temporaries).
+    pub(crate) fn leaf_name_in(&self, arena: &Arena, leaf: Id) -> String {
         match self.slot_of.get(leaf) {
             Some(s) => self.slots[s].name.to_string(),
-            None => self.arena.display(leaf, &self.resolver()),
+            None => arena.display(leaf, &self.resolver()),
         }
     }
 

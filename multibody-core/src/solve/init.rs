@@ -227,7 +227,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             variables: dm
                 .unmatched_vars
                 .iter()
-                .map(|&k| init_name(sys, &arena, unknowns[k]))
+                .map(|&k| sys.leaf_name_in(&arena, unknowns[k]))
                 .collect(),
         });
     }
@@ -314,7 +314,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let iteration_variables: Vec<String> = schedule
         .iteration
         .iter()
-        .map(|&l| init_name(sys, &arena, l))
+        .map(|&l| sys.leaf_name_in(&arena, l))
         .collect();
     let outcome = newton(
         &compiled.residual,
@@ -336,7 +336,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .iter()
             .enumerate()
             .take(16)
-            .map(|(k, &l)| (init_name(sys, &arena, l), inputs[layout.u(k)]))
+            .map(|(k, &l)| (sys.leaf_name_in(&arena, l), inputs[layout.u(k)]))
             .collect();
         log::debug!("initialization of `{model}` failed: {}", outcome.reason);
         let mut conditions: Vec<(String, f64)> = (0..nv)
@@ -398,14 +398,6 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         iterations: outcome.iterations,
         iteration_variables,
     })
-}
-
-/// A readable name for an unknown of the initialization system.
-fn init_name(sys: &SimplifiedSystem, arena: &crate::expr::Arena, l: Id) -> String {
-    match sys.slot_of.get(l) {
-        Some(s) => sys.slots[s].name.to_string(),
-        None => arena.display(l, &sys.resolver()),
-    }
 }
 
 /// The first guess of an iteration variable: its guess, its start value, or 0.
