@@ -9,6 +9,13 @@
 //! and `solve_ratio` (ours / baseline). Compile phases and initialization are the
 //! fastest of 4 rounds over all sizes. A last line gives the growth of each
 //! phase between the two largest sizes next to that of `N log N` (`n_log_n`).
+//!
+//! On Linux each row also gives the minor page faults per element of compiling
+//! (`compile_faults_per_n`) and of initializing (`init_faults_per_n`) in the last round:
+//! memory the allocator had to get fresh from the kernel. glibc keeps freed memory of a
+//! model of 1000 elements for the next round but returns that of 10 000 elements to the
+//! kernel, and on a virtual machine each fault costs a few microseconds, which shows in
+//! the growth line (see README.md, Benchmarks).
 
 use std::time::Instant;
 
@@ -24,6 +31,16 @@ const D: f64 = 1.0;
 const T_END: f64 = 10.0;
 const RTOL: f64 = 1e-6;
 const ATOL: f64 = 1e-8;
+
+/// Minor page faults of this process so far (`None` where `/proc/self/stat` is
+/// missing).
+fn minor_faults() -> Option<u64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which may contain spaces): state is the first,
+    // minflt the eighth.
+    let rest = stat.get(stat.rfind(')')? + 2..)?;
+    rest.split_whitespace().nth(7)?.parse().ok()
+}
 
 /// fixed - sd1 - inertia1 - sd2 - inertia2 - ... - inertiaN; the last inertia starts
 /// displaced by 1 rad, the others at rest in place.
@@ -237,13 +254,20 @@ fn main() -> Result<(), multibody::Error> {
     let models: Vec<System> = sizes.iter().map(|&n| chain(n)).collect();
     let mut best: Vec<Option<(SimplifiedSystem, PhaseTimes, f64)>> =
         sizes.iter().map(|_| None).collect();
+    // Page faults of compiling and initializing in the last round, per size.
+    let mut faults: Vec<(Option<u64>, Option<u64>)> = vec![(None, None); sizes.len()];
     for _round in 0..4 {
         for (k, model) in models.iter().enumerate() {
+            let f0 = minor_faults();
             let ssys = structural_simplify(model)?;
             let times = ssys.statistics().times;
+            let f1 = minor_faults();
             let t0 = Instant::now();
             drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
             let init_s = t0.elapsed().as_secs_f64();
+            let f2 = minor_faults();
+            let diff = |a: Option<u64>, b: Option<u64>| Some(b?.saturating_sub(a?));
+            faults[k] = (diff(f0, f1), diff(f1, f2));
             best[k] = Some(match best[k].take() {
                 None => (ssys, times, init_s),
                 Some((s, b, i)) => (
@@ -258,7 +282,9 @@ fn main() -> Result<(), multibody::Error> {
             });
         }
     }
-    for (n, compiled) in sizes.iter().copied().zip(best) {
+    for ((n, compiled), (compile_faults, init_faults)) in
+        sizes.iter().copied().zip(best).zip(faults)
+    {
         let (ssys, times, init_s) = compiled.expect("four rounds");
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
         let choice = if ssys.unknowns().len() <= 24 {
@@ -284,14 +310,22 @@ fn main() -> Result<(), multibody::Error> {
         } else {
             LinearSolver::SparseLu
         };
+        let per_n = |f: Option<u64>| {
+            f.map_or("null".to_string(), |f| {
+                format!("{:.2}", f as f64 / n as f64)
+            })
+        };
         if std::env::var("BENCH_ONLY_OURS").is_ok() {
             let per = |x: f64| x / n as f64 * 1e6;
             eprintln!(
-                "n={n} per element (us): flatten {:.2} simplify {:.2} codegen {:.2} init {:.2}",
+                "n={n} per element (us): flatten {:.2} simplify {:.2} codegen {:.2} init {:.2} \
+                 (page faults per element: compile {}, init {})",
                 per(times.flatten_s),
                 per(times.simplify_s),
                 per(times.codegen_s),
-                per(init_s)
+                per(init_s),
+                per_n(compile_faults),
+                per_n(init_faults),
             );
             continue;
         }
@@ -310,13 +344,15 @@ fn main() -> Result<(), multibody::Error> {
             solve_s,
         ]);
         println!(
-            "{{\"n\": {n}, \"flatten_s\": {:.6}, \"simplify_s\": {:.6}, \"codegen_s\": {:.6}, \"init_s\": {init_s:.6}, \"solve_s\": {solve_s:.6}, \"compile_s\": {compile_s:.6}, \"steps\": {}, \"baseline_solve_s\": {baseline_solve_s:.6}, \"baseline_steps\": {baseline_steps}, \"solve_ratio\": {:.3}, \"states\": {}}}",
+            "{{\"n\": {n}, \"flatten_s\": {:.6}, \"simplify_s\": {:.6}, \"codegen_s\": {:.6}, \"init_s\": {init_s:.6}, \"solve_s\": {solve_s:.6}, \"compile_s\": {compile_s:.6}, \"steps\": {}, \"baseline_solve_s\": {baseline_solve_s:.6}, \"baseline_steps\": {baseline_steps}, \"solve_ratio\": {:.3}, \"states\": {}, \"compile_faults_per_n\": {}, \"init_faults_per_n\": {}}}",
             times.flatten_s,
             times.simplify_s,
             times.codegen_s,
             sol.statistics().steps,
             solve_s / baseline_solve_s,
             ssys.states().len(),
+            per_n(compile_faults),
+            per_n(init_faults),
         );
     }
     print_growth(&rows);
