@@ -626,29 +626,26 @@ impl<'a> TapeBuilder<'a> {
         }
     }
 
+    /// The entry of an input or a constant in its dense numbering (`IdMap::NONE` until
+    /// emitted); `None` for other instructions.
+    fn dense_register(&mut self, op: Op) -> Option<&mut u32> {
+        match op {
+            Op::Input(s) => Some(&mut self.input_regs[s as usize]),
+            Op::Const(k) => Some(&mut self.const_regs[k as usize]),
+            _ => None,
+        }
+    }
+
     /// Emits `op` unless an identical instruction exists or it folds; returns its
     /// register.
     pub(super) fn emit(&mut self, op: Op) -> u32 {
-        match op {
-            Op::Input(s) => {
-                let r = self.input_regs[s as usize];
-                if r != IdMap::NONE {
-                    return r;
-                }
-                let r = self.push_op(op);
-                self.input_regs[s as usize] = r;
+        if let Some(r) = self.dense_register(op).map(|r| *r) {
+            if r != IdMap::NONE {
                 return r;
             }
-            Op::Const(k) => {
-                let r = self.const_regs[k as usize];
-                if r != IdMap::NONE {
-                    return r;
-                }
-                let r = self.push_op(op);
-                self.const_regs[k as usize] = r;
-                return r;
-            }
-            _ => {}
+            let r = self.push_op(op);
+            *self.dense_register(op).expect("an input or a constant") = r;
+            return r;
         }
         if let Some(r) = self.fold(op) {
             return r;
