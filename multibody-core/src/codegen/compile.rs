@@ -320,12 +320,24 @@ impl<'a> TapeBuilder<'a> {
 
     /// Finishes the tape, keeping only the instructions the outputs depend on.
     pub fn build(self) -> Tape {
+        self.build_outputs(0..self.outputs.len())
+    }
+
+    /// A tape of the outputs numbered `outputs` (as [`output`](Self::output) returned
+    /// them), keeping only the instructions they depend on. One builder can so give
+    /// several tapes over the same inputs that share their statements, compiled once
+    /// (a residual and the observed variables).
+    ///
+    /// # Panics
+    /// If `outputs` is not within the outputs added so far.
+    pub fn build_outputs(&self, outputs: std::ops::Range<usize>) -> Tape {
+        let outputs = &self.outputs[outputs];
         let n = self.ops.len();
         assert!(n < u32::MAX as usize, "tape too long");
-        let ops = self.ops;
-        let ls = self.ls;
+        let ops = &self.ops;
+        let ls = &self.ls;
         let mut live = vec![false; n];
-        for &o in &self.outputs {
+        for &o in outputs {
             live[o as usize] = true;
         }
         for i in (0..n).rev() {
@@ -364,7 +376,7 @@ impl<'a> TapeBuilder<'a> {
                 }
             };
         }
-        let order = super::schedule::grouped_order(&ops, &ls, &live, &invariant);
+        let order = super::schedule::grouped_order(ops, ls, &live, &invariant);
         let prelude_len = order.iter().take_while(|&&i| invariant[i]).count();
         let mut units = Vec::with_capacity(n);
         for i in order {
@@ -401,11 +413,7 @@ impl<'a> TapeBuilder<'a> {
             };
             new_ops.push(op);
         }
-        let outputs = self
-            .outputs
-            .iter()
-            .map(|&r| new_index[r as usize])
-            .collect();
+        let outputs = outputs.iter().map(|&r| new_index[r as usize]).collect();
         let runs = super::tape::runs_of(&new_ops, prelude_len);
         let prelude_runs = runs
             .iter()
@@ -419,7 +427,7 @@ impl<'a> TapeBuilder<'a> {
             prelude_len,
             invariant_inputs: self.invariant_inputs,
             ops: new_ops,
-            consts: self.consts,
+            consts: self.consts.clone(),
             ls: new_ls,
             outputs,
             n_inputs: self.n_inputs,

@@ -184,15 +184,18 @@ pub(crate) fn compile_dae(
             }
         }
     }
-    let residual = b.build();
-    let (jacobian, extended) = jacobians(&residual, layout);
-    let mut b = builder(arena, &leaves, spec, layout)?;
+    let n_rows = spec.rows.len();
+    // The observed variables are outputs of the same builder: the statements are
+    // compiled once for both tapes.
     let mut observed_names = Vec::with_capacity(spec.observed.len());
     for (name, e) in spec.observed {
         b.output(*e)?;
         observed_names.push(name.clone());
     }
-    let observed = Arc::new(b.build());
+    let residual = b.build_outputs(0..n_rows);
+    let observed = Arc::new(b.build_outputs(n_rows..n_rows + spec.observed.len()));
+    drop(b);
+    let (jacobian, extended) = jacobians(&residual, layout);
     let observed_names = Arc::new(crate::names::NameIndex::new(observed_names));
     Ok(CompiledDae {
         layout,

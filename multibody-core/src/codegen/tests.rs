@@ -626,6 +626,58 @@ fn inputs_are_emitted_once_at_first_use_and_rebinding_holds() {
 }
 
 #[test]
+fn one_builder_gives_tapes_of_chosen_outputs() {
+    let mut a = Arena::new();
+    let x = a.var(0);
+    let y = a.var(1);
+    let v = a.var(2);
+    let xy = a.mul(x, y);
+    let sv = a.f1(Func1::Sin, v);
+    let e2 = a.scale(2.0, v);
+    let ex = a.f1(Func1::Exp, x);
+    let mut b = TapeBuilder::new(&a, 2);
+    b.input(x, 0);
+    b.input(y, 1);
+    // A statement both tapes need, compiled once.
+    b.stmt(&Stmt::Assign {
+        target: v,
+        expr: xy,
+    })
+    .unwrap();
+    assert_eq!(b.output(sv).unwrap(), 0);
+    assert_eq!(b.output(e2).unwrap(), 1);
+    assert_eq!(b.output(ex).unwrap(), 2);
+    let first = b.build_outputs(0..1);
+    let rest = b.build_outputs(1..3);
+    let whole = b.build();
+    let eval = |t: &Tape, k: usize| {
+        let mut ws = t.workspace();
+        let mut out = vec![0.0; k];
+        t.eval(&[0.5, 3.0], &mut ws, &mut out).unwrap();
+        out
+    };
+    assert_eq!(eval(&first, 1), [1.5f64.sin()]);
+    assert_eq!(eval(&rest, 2), [3.0, 0.5f64.exp()]);
+    assert_eq!(eval(&whole, 3), [1.5f64.sin(), 3.0, 0.5f64.exp()]);
+    // Each tape keeps only what its outputs need: no sine in the second, no exponential
+    // in the first.
+    assert!(
+        !rest
+            .ops
+            .iter()
+            .any(|op| matches!(op, Op::F1(Func1::Sin, _)))
+    );
+    assert!(
+        !first
+            .ops
+            .iter()
+            .any(|op| matches!(op, Op::F1(Func1::Exp, _)))
+    );
+    assert_eq!(first.dependencies(), vec![vec![0, 1]]);
+    assert_eq!(rest.dependencies(), vec![vec![0, 1], vec![0]]);
+}
+
+#[test]
 fn deep_expressions_compile_without_recursion() {
     let mut a = Arena::new();
     let x = a.var(0);
