@@ -347,12 +347,12 @@ impl<'a> TapeBuilder<'a> {
                     let k = ls[s as usize].k;
                     if live[i..i + k].iter().any(|&l| l) {
                         live[i..i + k].fill(true);
-                        op.for_each_operand(&ls, |r| live[r as usize] = true);
+                        op.for_each_operand(ls, |r| live[r as usize] = true);
                     }
                 }
                 op => {
                     if live[i] {
-                        op.for_each_operand(&ls, |r| live[r as usize] = true);
+                        op.for_each_operand(ls, |r| live[r as usize] = true);
                     }
                 }
             }
@@ -371,7 +371,7 @@ impl<'a> TapeBuilder<'a> {
                 Op::LinearSolve(_) | Op::LsPart => false,
                 op => {
                     let mut all = true;
-                    op.for_each_operand(&ls, |r| all &= invariant[r as usize]);
+                    op.for_each_operand(ls, |r| all &= invariant[r as usize]);
                     all
                 }
             };
