@@ -279,9 +279,9 @@ impl<'a> TapeBuilder<'a> {
     ) -> u32 {
         let k = c.len();
         let base = self.ops.len() as u32;
-        self.ops.push(Op::LinearSolve(self.ls.len() as u32));
+        self.push_op(Op::LinearSolve(self.ls.len() as u32));
         for _ in 1..k {
-            self.ops.push(Op::LsPart);
+            self.push_op(Op::LsPart);
         }
         self.ls.push(LsInfo {
             k,
@@ -459,9 +459,9 @@ impl<'a> TapeBuilder<'a> {
         }
     }
 
-    /// Binds `id` to register `r`; compiled expressions that might have used an older
-    /// binding are forgotten.
-    /// `r` may be `PENDING | slot` (see `bound`).
+    /// Binds `id` to register `r`, or to an input not emitted yet when `r` is
+    /// `PENDING | slot` (see `bound`); compiled expressions that might have used an
+    /// older binding are forgotten.
     fn bind(&mut self, id: Id, r: u32) {
         if self.bound.get(id) == Some(r) {
             return;
