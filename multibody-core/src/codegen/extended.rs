@@ -288,17 +288,16 @@ impl ExtendedJacobian {
         // Dependencies with the final cuts (a cut register reads as its own column).
         let mut deps: Vec<Vec<u32>> = vec![Vec::new(); nregs];
         let mut rows: Vec<Vec<usize>> = vec![Vec::new(); dim];
-        let leaf = |r: u32, deps: &[Vec<u32>]| -> Vec<u32> {
-            match cut_of[r as usize] {
-                NO_CUT => deps[r as usize].clone(),
-                c => vec![(n + c as usize) as u32],
-            }
+        // A cut register reads as its own column, any other as its dependencies.
+        let cut_column = |r: u32| match cut_of[r as usize] {
+            NO_CUT => None,
+            c => Some((n + c as usize) as u32),
         };
         // `acc` merged with register `r`'s columns, through the work buffer `next`.
         let merge_leaf = |acc: &mut Vec<u32>, next: &mut Vec<u32>, r: u32, deps: &[Vec<u32>]| {
-            match cut_of[r as usize] {
-                NO_CUT => merge_into(acc, &deps[r as usize], next),
-                c => merge_into(acc, &[(n + c as usize) as u32], next),
+            match cut_column(r) {
+                Some(c) => merge_into(acc, &[c], next),
+                None => merge_into(acc, &deps[r as usize], next),
             }
             std::mem::swap(acc, next);
         };
@@ -336,8 +335,7 @@ impl ExtendedJacobian {
                     for &r in &operands {
                         merge_leaf(&mut acc, &mut next, r, &deps);
                     }
-                    if cut_of[i] != NO_CUT {
-                        let own = (n + cut_of[i] as usize) as u32;
+                    if let Some(own) = cut_column(i as u32) {
                         merge_into(&acc, &[own], &mut next);
                         rows[own as usize] = next.iter().map(|&c| c as usize).collect();
                     }
@@ -346,7 +344,10 @@ impl ExtendedJacobian {
             }
         }
         for (o, &r) in tape.outputs.iter().take(n).enumerate() {
-            rows[o] = leaf(r, &deps).iter().map(|&c| c as usize).collect();
+            rows[o] = match cut_column(r) {
+                Some(c) => vec![c as usize],
+                None => deps[r as usize].iter().map(|&c| c as usize).collect(),
+            };
         }
         let (col_ptr, row_idx) = rows_to_csc(&rows, dim);
         let coloring = color_columns(&col_ptr, &row_idx, &rows);
