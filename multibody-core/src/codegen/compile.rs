@@ -483,16 +483,17 @@ impl<'a> TapeBuilder<'a> {
         }
     }
 
-    /// Emits the input of a node bound to one but not yet used; returns its register.
+    /// [`Self::lookup`], emitting the input of a node bound to one but not yet used.
     #[inline]
-    fn resolve_pending(&mut self, id: Id) -> Option<u32> {
+    fn lookup_or_emit_input(&mut self, id: Id) -> Option<u32> {
         match self.bound.get(id) {
             Some(p) if p & PENDING != 0 => {
                 let r = self.emit(Op::Input(p & !PENDING));
                 self.bound.insert(id, r);
                 Some(r)
             }
-            _ => None,
+            Some(r) => Some(r),
+            None => self.memo.get(id),
         }
     }
 
@@ -692,7 +693,7 @@ impl<'a> TapeBuilder<'a> {
 
     /// Compiles `root` (post-order with an explicit stack); returns its register.
     fn compile(&mut self, root: Id) -> Result<u32, CodegenError> {
-        if let Some(r) = self.lookup(root).or_else(|| self.resolve_pending(root)) {
+        if let Some(r) = self.lookup_or_emit_input(root) {
             return Ok(r);
         }
         let arena = self.arena;
@@ -701,7 +702,7 @@ impl<'a> TapeBuilder<'a> {
         stack.push((root, false));
         let mut result = Ok(());
         while let Some((id, expanded)) = stack.pop() {
-            if self.lookup(id).is_some() || self.resolve_pending(id).is_some() {
+            if self.lookup_or_emit_input(id).is_some() {
                 continue;
             }
             let node = arena.node(id);

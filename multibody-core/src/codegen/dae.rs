@@ -194,6 +194,7 @@ pub(crate) fn compile_dae(
     }
     let residual = b.build_outputs(0..n_rows);
     let observed = Arc::new(b.build_outputs(n_rows..n_rows + spec.observed.len()));
+    // The builder's tables are not needed for the Jacobian analysis: free them first.
     drop(b);
     let (jacobian, extended) = jacobians(&residual, layout);
     let observed_names = Arc::new(crate::names::NameIndex::new(observed_names));
