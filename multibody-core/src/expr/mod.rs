@@ -16,6 +16,7 @@ mod display;
 mod eval;
 pub(crate) mod global;
 mod id_index;
+mod linear_form;
 mod node_map;
 mod solve;
 mod subst;
@@ -25,6 +26,7 @@ pub use arena::Arena;
 pub use display::NameResolver;
 pub use global::{Expr, symbol_name};
 pub use id_index::IdIndex;
+pub use linear_form::LinearForm;
 pub use node_map::{NodeMap, NodeTable};
 pub use solve::LinearSolve;
 pub use vector::{Mat3, Vec3};
@@ -279,5 +281,7 @@ pub fn is_leaf(node: &Node) -> bool {
 
 #[cfg(test)]
 mod diff_tests;
+#[cfg(test)]
+mod linear_form_tests;
 #[cfg(test)]
 mod tests;

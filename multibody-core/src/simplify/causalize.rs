@@ -292,13 +292,24 @@ fn solve_block(
     // Per equation: the coefficient of each block unknown it contains (the sparse path
     // reuses them as matrix entries).
     let mut coefficients: Vec<Vec<(usize, Id)>> = Vec::with_capacity(k);
-    for &r in block_eqs {
+    // Equations linear in the block's unknowns (the common case) give every
+    // coefficient from one walk; the others one derivative per unknown.
+    let forms = arena.linear_forms(block_eqs, &|l| local.get(&l).copied());
+    for (&r, form) in block_eqs.iter().zip(forms) {
         let mut tv = Vec::new();
         let mut row = Vec::new();
         for l in arena.leaves(r) {
             let Some(&j) = local.get(&l) else { continue };
-            let coef = arena.diff(r, l);
-            let depends = arena.contains_any(coef, &var_set);
+            let (coef, depends) = match &form {
+                Some(f) => {
+                    let coef = f.coefficients.iter().find(|c| c.0 == j).map(|c| c.1);
+                    (coef.unwrap_or_else(|| arena.zero()), false)
+                }
+                None => {
+                    let coef = arena.diff(r, l);
+                    (coef, arena.contains_any(coef, &var_set))
+                }
+            };
             if depends {
                 linear = false;
             }
