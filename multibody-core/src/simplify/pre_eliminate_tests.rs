@@ -183,3 +183,55 @@ fn cancellations_and_made_parameter_differences_are_no_pivots() {
     assert_eq!(r.eliminations.len(), 1, "{:?}", r.eliminations);
     assert_eq!(r.vars.len(), 1);
 }
+
+/// An entry that vanishes at the default parameter values whatever the variables are
+/// (`p q` with `p = 0` by default, as an offset `r_CM[3]` times a direction cosine) does
+/// not count as fill: with `max_fill = 0`, `x0` is eliminated from `x0 + x1 = 1`
+/// although `p q x0 + 2 x1 = 3` also holds `x0`; with `p = 1` by default it is not. The
+/// entry is kept symbolically, so the reduced system is exact for any `p`.
+#[test]
+fn entries_zero_at_the_defaults_do_not_count_as_fill() {
+    for (default_p, eliminated) in [(0.0, 1), (1.0, 0)] {
+        let mut arena = Arena::new();
+        let p = arena.param(0);
+        let q = arena.var(7);
+        let pq = arena.mul(p, q);
+        let (one, two) = (arena.one(), arena.constant(2.0));
+        let (minus_one, minus_three) = (arena.constant(-1.0), arena.constant(-3.0));
+        let rows = vec![
+            LinearRow {
+                entries: vec![(0, one), (1, one)],
+                c: minus_one,
+            },
+            LinearRow {
+                entries: vec![(0, pq), (1, two)],
+                c: minus_three,
+            },
+        ];
+        let r = pre_eliminate(&mut arena, rows, 2, &[default_p], 0, &mut |_, e| e);
+        assert_eq!(r.eliminations.len(), eliminated, "p = {default_p}");
+        if eliminated == 0 {
+            continue;
+        }
+        assert_eq!(r.eliminations[0].var, 0);
+        assert_eq!(r.vars, vec![1]);
+        // At p = 0.5, q = 2 (so p q = 1): x0 + x1 = 1, x0 + 2 x1 = 3 => x1 = 2, x0 = -1.
+        let at = |arena: &Arena, e: Id| {
+            arena
+                .eval(e, &|n: &Node| match n {
+                    Node::Param(0) => Some(0.5),
+                    Node::Var(7) => Some(2.0),
+                    _ => None,
+                })
+                .unwrap()
+        };
+        let (_, row) = &r.rows[0];
+        let x1 = -at(&arena, row.c) / at(&arena, row.entries[0].1);
+        let e = &r.eliminations[0];
+        let x0 = -(at(&arena, e.c) + at(&arena, e.others[0].1) * x1) / at(&arena, e.pivot);
+        assert!(
+            (x1 - 2.0).abs() < 1e-14 && (x0 + 1.0).abs() < 1e-14,
+            "{x0} {x1}"
+        );
+    }
+}
