@@ -9,6 +9,7 @@ use multibody::joints::Revolute;
 use multibody::parts::BodyShape;
 use multibody::prelude::*;
 use multibody::world::World;
+use multibody::{SimplifyOptions, structural_simplify_with};
 
 const G: f64 = 9.80665;
 const I_ZZ: f64 = 0.001;
@@ -144,4 +145,106 @@ fn specialized_and_general_functions_integrate_the_same_trajectory() {
             );
         }
     }
+}
+
+/// A chain whose links have their centre of mass off the link's axis (`r_CM[2]`,
+/// `r_CM[3]`), a product of inertia `I_21` and a frame offset `r[2]`: parameters that
+/// are 0 in [`chain`].
+fn offset_chain(n: usize) -> System {
+    let mut m = System::new(format!("offset_chain{n}"));
+    let world = m.add_typed("world", &World::default());
+    let mut prev = world.frame_b;
+    for k in 1..=n {
+        let joint = m.add_typed(&format!("rev{k}"), &Revolute::default());
+        let link = m.add_typed(
+            &format!("link{k}"),
+            &BodyShape {
+                r: OFFSET_R,
+                r_CM: Some(OFFSET_R_CM),
+                m: 1.0,
+                I_diag: [I_ZZ, I_ZZ, I_ZZ],
+                I_offdiag: [OFFSET_I_21, 0.0, 0.0],
+                ..Default::default()
+            },
+        );
+        m.connect_handles(&prev, &joint.frame_a);
+        m.connect_handles(&joint.frame_b, &link.frame_a);
+        prev = link.frame_b;
+    }
+    m
+}
+
+const OFFSET_R: [f64; 3] = [0.5, 0.03, 0.0];
+const OFFSET_R_CM: [f64; 3] = [0.5, 0.1, 0.05];
+const OFFSET_I_21: f64 = 2e-4;
+
+/// Pre-elimination of the acceleration block orders its eliminations as if the entries
+/// that vanish at the default parameter values were absent, but keeps them. A tunable
+/// chain long enough for that block to go to the sparse LU, given those parameters
+/// nonzero, must follow the same chain compiled with the values folded in.
+#[test]
+fn parameters_that_are_zero_by_default_keep_their_terms() {
+    let n = 20;
+    let tunable = structural_simplify(&chain(n, 0.5)).unwrap();
+    assert!(
+        !tunable.statistics().linear_sparse.is_empty(),
+        "{}",
+        tunable.statistics()
+    );
+    let folded = structural_simplify_with(
+        &offset_chain(n),
+        &SimplifyOptions {
+            evaluate_parameters: true,
+            ..SimplifyOptions::default()
+        },
+    )
+    .unwrap();
+    let starts = [("rev2.phi", 0.3), ("rev5.w", -0.5)];
+    let mut names: Vec<(String, f64)> = Vec::new();
+    for k in 1..=n {
+        for (i, (&r, &r_cm)) in OFFSET_R.iter().zip(&OFFSET_R_CM).enumerate().skip(1) {
+            names.push((format!("link{k}.translation.r[{}]", i + 1), r));
+            names.push((format!("link{k}.body.r_CM[{}]", i + 1), r_cm));
+        }
+        names.push((format!("link{k}.body.I_21"), OFFSET_I_21));
+    }
+    let mut values: Vec<(&str, f64)> = starts.to_vec();
+    values.extend(names.iter().map(|(s, v)| (s.as_str(), *v)));
+    let opts = SolverOptions {
+        rtol: 1e-9,
+        atol: 1e-11,
+        ..SolverOptions::default()
+    };
+    let t_end = 0.5;
+    let a = DaeProblem::new(&tunable, &values, (0.0, t_end))
+        .unwrap()
+        .solve(&opts)
+        .unwrap();
+    let b = DaeProblem::new(&folded, &starts, (0.0, t_end))
+        .unwrap()
+        .solve(&opts)
+        .unwrap();
+    let last = format!("link{n}.frame_b.r_0[1]");
+    for name in ["rev1.phi", "rev2.w", "rev20.phi", last.as_str()] {
+        for t in [0.1, 0.25, 0.5] {
+            let (x, y) = (a.at(name, t).unwrap(), b.at(name, t).unwrap());
+            assert!(
+                (x - y).abs() < 1e-6 * (1.0 + x.abs()),
+                "{name} at {t}: {x} tunable, {y} folded"
+            );
+        }
+    }
+    // The offsets matter: the chain with them differs from the one without.
+    let plain = DaeProblem::new(&tunable, &starts, (0.0, t_end))
+        .unwrap()
+        .solve(&opts)
+        .unwrap();
+    let (x, y) = (
+        a.at("rev1.phi", t_end).unwrap(),
+        plain.at("rev1.phi", t_end).unwrap(),
+    );
+    assert!(
+        (x - y).abs() > 1e-3,
+        "offsets changed nothing: {x} against {y}"
+    );
 }
