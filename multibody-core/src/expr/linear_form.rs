@@ -34,34 +34,40 @@ impl Arena {
     /// `e` as `rest + sum(coefficient * unknown)`, where `unknown(leaf)` numbers the
     /// leaves to collect (a `der(x)` leaf counts on its own, as in [`Arena::diff`]);
     /// `None` when `e` is not linear in them (a product of two of them, a power, one
-    /// inside a function or a condition). The coefficients are those [`Arena::diff`]
-    /// gives.
+    /// inside a function or a condition), and when all the unknowns of a sum in it
+    /// cancel (`c (x + y) - c x - c y`: the node still holds them). The coefficients are
+    /// those [`Arena::diff`] gives.
     pub fn linear_form(
         &mut self,
         e: Id,
         unknown: &dyn Fn(Id) -> Option<usize>,
     ) -> Option<LinearForm> {
         let mut memo = HashMap::default();
-        self.linear_form_rec(e, unknown, &mut memo)
+        self.linear_form_rec(e, unknown, true, &mut memo)
     }
 
-    /// [`linear_form`](Self::linear_form) of each of `es`, sharing the work on their
-    /// common subexpressions.
-    pub fn linear_forms(
+    /// The coefficients of [`linear_form`](Self::linear_form) for each of `es`, sharing
+    /// the work on their common subexpressions; the rest is not built.
+    pub fn linear_coefficients(
         &mut self,
         es: &[Id],
         unknown: &dyn Fn(Id) -> Option<usize>,
-    ) -> Vec<Option<LinearForm>> {
+    ) -> Vec<Option<Vec<(usize, Id)>>> {
         let mut memo = HashMap::default();
         es.iter()
-            .map(|&e| self.linear_form_rec(e, unknown, &mut memo))
+            .map(|&e| {
+                self.linear_form_rec(e, unknown, false, &mut memo)
+                    .map(|f| f.coefficients)
+            })
             .collect()
     }
 
+    /// The form of `e`; its `rest` is left at 0 unless `with_rest`.
     fn linear_form_rec(
         &mut self,
         e: Id,
         unknown: &dyn Fn(Id) -> Option<usize>,
+        with_rest: bool,
         memo: &mut HashMap<Id, Option<LinearForm>>,
     ) -> Option<LinearForm> {
         let node = *self.node(e);
@@ -91,7 +97,7 @@ impl Arena {
                 let mut linear_terms: Vec<(usize, LinearForm)> = Vec::new();
                 for idx in 0..ts.len() {
                     let (_, t) = self.terms(ts)[idx];
-                    match self.linear_form_rec(t, unknown, memo) {
+                    match self.linear_form_rec(t, unknown, with_rest, memo) {
                         Some(f) if f.coefficients.is_empty() => {}
                         Some(f) => linear_terms.push((idx, f)),
                         None => return remember(e, None, memo),
@@ -100,14 +106,18 @@ impl Arena {
                 if linear_terms.is_empty() {
                     Some(LinearForm::free(e))
                 } else {
-                    Some(self.sum_of_forms(ts, f64::from_bits(c), &linear_terms))
+                    let form = self.sum_of_forms(ts, f64::from_bits(c), &linear_terms, with_rest);
+                    // Unknowns whose terms cancel are still in the node (the arena does
+                    // not distribute `c (x + y) - c x`): it is not free of them, so no
+                    // form; the caller differentiates instead.
+                    (!form.coefficients.is_empty()).then_some(form)
                 }
             }
             Node::Prod(fs) => {
                 let mut linear_factor = None;
                 for idx in 0..fs.len() {
                     let (b, n) = self.factors(fs)[idx];
-                    let Some(f) = self.linear_form_rec(b, unknown, memo) else {
+                    let Some(f) = self.linear_form_rec(b, unknown, with_rest, memo) else {
                         return remember(e, None, memo);
                     };
                     if !f.coefficients.is_empty() {
@@ -133,38 +143,47 @@ impl Arena {
                             .iter()
                             .map(|&(j, a)| (j, self.product(&[scale, a])))
                             .collect();
-                        let rest = self.product(&[scale, f.rest]);
+                        let rest = if with_rest {
+                            self.product(&[scale, f.rest])
+                        } else {
+                            self.zero()
+                        };
                         Some(LinearForm { coefficients, rest })
                     }
                 }
             }
             Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => {
-                self.free_of_unknowns(e, &[a, b], unknown, memo)
+                self.free_of_unknowns(e, &[a, b], unknown, with_rest, memo)
             }
-            Node::F1(_, a) => self.free_of_unknowns(e, &[a], unknown, memo),
-            Node::If(c, a, b) => self.free_of_unknowns(e, &[c, a, b], unknown, memo),
+            Node::F1(_, a) => self.free_of_unknowns(e, &[a], unknown, with_rest, memo),
+            Node::If(c, a, b) => self.free_of_unknowns(e, &[c, a, b], unknown, with_rest, memo),
         };
         remember(e, form, memo)
     }
 
     /// The sum node with terms `ts` and `constant`, where the terms at the indices of
     /// `linear_terms` have those forms (the others are free of the unknowns), as one
-    /// form: coefficients merged per unknown.
+    /// form: coefficients merged per unknown (the rest only `with_rest`).
     fn sum_of_forms(
         &mut self,
         ts: super::Operands,
         constant: f64,
         linear_terms: &[(usize, LinearForm)],
+        with_rest: bool,
     ) -> LinearForm {
-        let mut rest_terms: Vec<(f64, Id)> = self
-            .terms(ts)
-            .iter()
-            .map(|&(k, t)| (f64::from_bits(k), t))
-            .collect();
-        for (idx, f) in linear_terms {
-            rest_terms[*idx].1 = f.rest;
-        }
-        let rest = self.linear_combination(constant, &rest_terms);
+        let rest = if with_rest {
+            let mut rest_terms: Vec<(f64, Id)> = self
+                .terms(ts)
+                .iter()
+                .map(|&(k, t)| (f64::from_bits(k), t))
+                .collect();
+            for (idx, f) in linear_terms {
+                rest_terms[*idx].1 = f.rest;
+            }
+            self.linear_combination(constant, &rest_terms)
+        } else {
+            self.zero()
+        };
         let mut coefficients: Vec<(usize, Id)> = Vec::new();
         let mut done = Vec::new();
         for (n, (_, f)) in linear_terms.iter().enumerate() {
@@ -196,10 +215,11 @@ impl Arena {
         e: Id,
         operands: &[Id],
         unknown: &dyn Fn(Id) -> Option<usize>,
+        with_rest: bool,
         memo: &mut HashMap<Id, Option<LinearForm>>,
     ) -> Option<LinearForm> {
         for &a in operands {
-            match self.linear_form_rec(a, unknown, memo) {
+            match self.linear_form_rec(a, unknown, with_rest, memo) {
                 Some(f) if f.coefficients.is_empty() => {}
                 _ => return None,
             }

@@ -1,4 +1,4 @@
-//! Tests of [`Arena::linear_form`]: the coefficients are the partial derivatives that
+//! Tests of [`Arena::linear_form`] and [`Arena::linear_coefficients`]: the coefficients are the partial derivatives that
 //! [`Arena::diff`] gives (the same nodes), the rest is the expression with the unknowns
 //! at zero, and what is not linear in the unknowns is refused.
 
@@ -70,11 +70,10 @@ fn coefficients_are_the_partial_derivatives_and_the_rest_is_what_is_left() {
     );
 }
 
-/// Forms of several expressions share their subexpressions' work and agree with the
-/// forms taken one at a time; an unknown whose terms cancel has no coefficient, and
-/// `der(x)` is a leaf of its own.
+/// Coefficients of several expressions share their subexpressions' work and agree with
+/// the forms taken one at a time, and `der(x)` is a leaf of its own.
 #[test]
-fn shared_forms_agree_and_cancelled_unknowns_are_absent() {
+fn shared_coefficients_agree_with_single_forms() {
     let mut a = Arena::new();
     let (x, y, q) = (a.var(0), a.var(1), a.var(2));
     let cos_q = a.f1(Func1::Cos, q);
@@ -83,17 +82,58 @@ fn shared_forms_agree_and_cancelled_unknowns_are_absent() {
     let e1 = a.add(common, dx);
     let e2 = a.sub(common, x);
     let copy = a.clone();
-    let both = a.linear_forms(&[e1, e2], &unknown(&copy));
-    assert_eq!(both[0], form(&mut a, e1));
-    assert_eq!(both[1], form(&mut a, e2));
-    let f1 = both[0].clone().expect("linear");
+    let both = a.linear_coefficients(&[e1, e2], &unknown(&copy));
+    let singles = [form(&mut a, e1), form(&mut a, e2)];
+    for (shared, single) in both.iter().zip(&singles) {
+        assert_eq!(shared.as_ref(), single.as_ref().map(|f| &f.coefficients));
+    }
+    let f1 = singles[0].clone().expect("linear");
     assert_eq!(f1.coefficients, vec![(1, cos_q)]);
     assert_eq!(f1.rest, dx, "der(x) is not x");
-    // (x + y) - x: y alone.
+}
+
+/// The arena does not distribute `c (x + y) - c x`: the coefficient of `x` cancels to
+/// nothing and that of `y` is `c`, the rest 0. When every unknown of a sum cancels
+/// (`c (x + y) - c x - c y`), the node still holds them, so it is not called free of
+/// them: no form, and neither has a product of it with an unknown.
+#[test]
+fn cancelled_unknowns_are_absent_or_refuse_the_form() {
+    let mut a = Arena::new();
+    let (x, y, c) = (a.var(0), a.var(1), a.param(0));
     let xy = a.add(x, y);
-    let cancelled = a.sub(xy, x);
-    let f = form(&mut a, cancelled).expect("linear");
-    assert_eq!(f.coefficients, vec![(1, a.one())]);
+    let c_xy = a.mul(c, xy);
+    let cx = a.mul(c, x);
+    let partial = a.sub(c_xy, cx);
+    assert_ne!(
+        partial,
+        a.mul(c, y),
+        "the arena distributed: the test needs another case"
+    );
+    let f = form(&mut a, partial).expect("linear in y");
+    assert_eq!(f.coefficients, vec![(1, c)]);
+    assert_eq!(f.rest, a.zero());
+    let cy = a.mul(c, y);
+    let all = a.sub(partial, cy);
+    assert_ne!(
+        all,
+        a.zero(),
+        "the arena cancelled: the test needs another case"
+    );
+    assert_eq!(form(&mut a, all), None);
+    let y_all = a.mul(y, all);
+    assert_eq!(form(&mut a, y_all), None);
+    // A power of a parameter times a sum: p^-1 (x + 2 y).
+    let p = a.param(1);
+    let inv_p = a.powi(p, -1);
+    let two = a.constant(2.0);
+    let two_y = a.mul(two, y);
+    let x_2y = a.add(x, two_y);
+    let e = a.mul(inv_p, x_2y);
+    let f = form(&mut a, e).expect("linear");
+    for &(j, coef) in &f.coefficients {
+        assert_eq!(coef, a.diff(e, [x, y][j]));
+    }
+    assert_eq!(f.coefficients.len(), 2);
 }
 
 /// Products of unknowns, powers, functions and conditions of them are not linear;

@@ -294,15 +294,15 @@ fn solve_block(
     let mut coefficients: Vec<Vec<(usize, Id)>> = Vec::with_capacity(k);
     // Equations linear in the block's unknowns (the common case) give every
     // coefficient from one walk; the others one derivative per unknown.
-    let forms = arena.linear_forms(block_eqs, &|l| local.get(&l).copied());
+    let forms = arena.linear_coefficients(block_eqs, &|l| local.get(&l).copied());
     for (&r, form) in block_eqs.iter().zip(forms) {
         let mut tv = Vec::new();
         let mut row = Vec::new();
         for l in arena.leaves(r) {
             let Some(&j) = local.get(&l) else { continue };
             let (coef, depends) = match &form {
-                Some(f) => {
-                    let coef = f.coefficients.iter().find(|c| c.0 == j).map(|c| c.1);
+                Some(coefficients) => {
+                    let coef = coefficients.iter().find(|c| c.0 == j).map(|c| c.1);
                     (coef.unwrap_or_else(|| arena.zero()), false)
                 }
                 None => {

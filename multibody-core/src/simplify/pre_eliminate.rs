@@ -231,6 +231,11 @@ pub(crate) fn pre_eliminate(
             let Some(p) = coefficient(&rows[i], j) else {
                 continue;
             };
+            // An entry cancelled and made again by elimination may now vanish at the
+            // defaults: no pivot then (and it would not count in its row or column).
+            if default_zero.contains(i, j) {
+                continue;
+            }
             let len = rows[i]
                 .entries
                 .iter()
