@@ -258,3 +258,29 @@ fn parameters_that_are_zero_by_default_keep_their_terms() {
         );
     }
 }
+
+/// Compiling analyses no Jacobian, and a solve with specialized parameters (the default)
+/// analyses the specialized residual's, not the compiled one's: on a 20-link chain the
+/// extended Jacobian is then never built for the general residual. Without
+/// specialization the solve analyses the compiled residual's (and uses the extended one
+/// where it is worth it).
+#[test]
+fn jacobians_are_analysed_on_first_use_only() {
+    let ssys = structural_simplify(&chain(20, 0.5)).unwrap();
+    assert_eq!(ssys.compiled().jacobians_analysed(), (false, false));
+    let problem = DaeProblem::new(&ssys, &[("rev2.phi", 0.3)], (0.0, 0.05)).unwrap();
+    let specialized = problem.solve(&SolverOptions::default()).unwrap();
+    assert_eq!(ssys.compiled().jacobians_analysed(), (false, false));
+    let general = problem
+        .solve(&SolverOptions {
+            specialize_parameters: false,
+            ..SolverOptions::default()
+        })
+        .unwrap();
+    assert!(ssys.compiled().jacobians_analysed().1);
+    let (x, y) = (
+        specialized.at("rev20.phi", 0.05).unwrap(),
+        general.at("rev20.phi", 0.05).unwrap(),
+    );
+    assert!((x - y).abs() < 1e-6, "{x} specialized, {y} general");
+}

@@ -464,7 +464,7 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
             e.n_colors()
         );
     }
-    if let Some(e) = &specialized.extended {
+    if let Some(e) = specialized.extended() {
         eprintln!(
             "  extended Jacobian of the specialized residual: {} cuts, {} non-zeros in {} colours",
             e.n_cuts(),
@@ -472,7 +472,7 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
             e.n_colors()
         );
     }
-    if let Some(e) = &c.extended {
+    if let Some(e) = c.extended() {
         eprintln!(
             "  extended Jacobian used: {} cuts, {} non-zeros in {} colours",
             e.n_cuts(),

@@ -69,12 +69,11 @@ pub struct CompiledDae {
     /// The residual: one output per unknown.
     pub residual: Tape,
     /// The Jacobian pattern, colouring and evaluator for [`Self::residual`], built on
-    /// first use when the extended Jacobian serves the sparse solvers (see
-    /// [`Self::jacobian`]).
+    /// first use (see [`Self::jacobian`]).
     jacobian: std::sync::OnceLock<DaeJacobian>,
-    /// The extended Jacobian of [`Self::residual`], kept when it is much sparser than
-    /// [`Self::jacobian`] (see [`prefer_extended`]); sparse solvers then use it.
-    pub extended: Option<ExtendedJacobian>,
+    /// The extended Jacobian of [`Self::residual`] when it is much sparser than
+    /// [`Self::jacobian`], built on first use (see [`Self::extended`]).
+    extended: std::sync::OnceLock<Option<ExtendedJacobian>>,
     /// Every observable variable, one output each, named by [`Self::observed_names`]
     /// (shared by every problem and solution made from this system).
     pub observed: Arc<Tape>,
@@ -194,50 +193,17 @@ pub(crate) fn compile_dae(
     }
     let residual = b.build_outputs(0..n_rows);
     let observed = Arc::new(b.build_outputs(n_rows..n_rows + spec.observed.len()));
-    // The builder's tables are not needed for the Jacobian analysis: free them first.
-    drop(b);
-    let (jacobian, extended) = jacobians(&residual, layout);
+    // The Jacobians are analysed on first use: a solve with the parameters specialized
+    // (the default) analyses the specialized residual instead, never this one.
     let observed_names = Arc::new(crate::names::NameIndex::new(observed_names));
     Ok(CompiledDae {
         layout,
         residual,
-        jacobian,
-        extended,
+        jacobian: std::sync::OnceLock::new(),
+        extended: std::sync::OnceLock::new(),
         observed,
         observed_names,
     })
-}
-
-/// The Jacobians of `residual`: the extended one when it is worth its extra rows, and
-/// the plain one when it was built to decide that.
-fn jacobians(
-    residual: &Tape,
-    layout: InputLayout,
-) -> (std::sync::OnceLock<DaeJacobian>, Option<ExtendedJacobian>) {
-    let extended = ExtendedJacobian::new(
-        residual,
-        layout.n,
-        layout.u(0),
-        layout.up(0),
-        DEFAULT_MAX_FILL,
-    );
-    // The plain Jacobian needs at least as many colours as its densest row has
-    // entries: when that alone rules it out, it is not built now.
-    let jacobian = std::sync::OnceLock::new();
-    let use_extended = if residual.column_degree_reaches(
-        layout.n,
-        layout.u(0),
-        layout.up(0),
-        2 * extended.n_colors(),
-    ) {
-        true
-    } else {
-        let plain = DaeJacobian::new(residual, layout.n, layout.u(0), layout.up(0));
-        let better = prefer_extended(&plain, &extended);
-        let _ = jacobian.set(plain);
-        better
-    };
-    (jacobian, Some(extended).filter(|_| use_extended))
 }
 
 impl CompiledDae {
@@ -250,16 +216,40 @@ impl CompiledDae {
     /// # Panics
     /// If `params` does not have [`InputLayout::n_params`] values.
     pub fn specialize(&self, params: &[f64]) -> CompiledDae {
-        let residual = self.residual.specialize(params);
-        let (jacobian, extended) = jacobians(&residual, self.layout);
         CompiledDae {
             layout: self.layout,
-            residual,
-            jacobian,
-            extended,
+            residual: self.residual.specialize(params),
+            jacobian: std::sync::OnceLock::new(),
+            extended: std::sync::OnceLock::new(),
             observed: self.observed.clone(),
             observed_names: self.observed_names.clone(),
         }
+    }
+
+    /// Whether the plain and the extended Jacobian have been analysed yet (each is on
+    /// its first use): compiling analyses neither, and a solve with specialized
+    /// parameters analyses those of the specialized residual only.
+    pub fn jacobians_analysed(&self) -> (bool, bool) {
+        (self.jacobian.get().is_some(), self.extended.get().is_some())
+    }
+
+    /// The extended Jacobian of [`Self::residual`] when it is worth its extra rows (see
+    /// [`prefer_extended`]); sparse solvers then use it. Analysed on the first call
+    /// (with the plain Jacobian too, when that is needed to decide).
+    pub fn extended(&self) -> Option<&ExtendedJacobian> {
+        self.extended
+            .get_or_init(|| {
+                let (n, u, up) = (self.layout.n, self.layout.u(0), self.layout.up(0));
+                let extended = ExtendedJacobian::new(&self.residual, n, u, up, DEFAULT_MAX_FILL);
+                // The plain Jacobian needs at least as many colours as its densest row
+                // has entries: when that alone rules it out, it is not built.
+                let use_extended =
+                    self.residual
+                        .column_degree_reaches(n, u, up, 2 * extended.n_colors())
+                        || prefer_extended(self.jacobian(), &extended);
+                use_extended.then_some(extended)
+            })
+            .as_ref()
     }
 
     /// The Jacobian pattern, colouring and evaluator for [`Self::residual`] (the

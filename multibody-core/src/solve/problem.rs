@@ -261,7 +261,7 @@ impl<'a> DaeProblem<'a> {
         let (linear_solver, extended) = match options.linear_solver {
             LinearSolverChoice::Auto if n <= 24 => (LinearSolver::Dense, false),
             LinearSolverChoice::Auto | LinearSolverChoice::Sparse => {
-                (LinearSolver::SparseLu, c.extended.is_some())
+                (LinearSolver::SparseLu, c.extended().is_some())
             }
             LinearSolverChoice::SparsePlain => (LinearSolver::SparseLu, false),
             LinearSolverChoice::Dense => (LinearSolver::Dense, false),
@@ -402,10 +402,10 @@ impl<'c> CompiledFunctions<'c> {
             inputs,
             ws: c.residual.workspace(),
             jws: None,
-            ews: c
-                .extended
-                .as_ref()
-                .filter(|_| extended)
+            // Asked only when wanted: the first call analyses the extended Jacobian.
+            ews: extended
+                .then(|| c.extended())
+                .flatten()
                 .map(|e| e.workspace(&c.residual)),
             layout,
         }
@@ -447,7 +447,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
-        match (&self.ews, &self.c.extended) {
+        match (&self.ews, self.c.extended()) {
             (Some(_), Some(e)) => Some((e.col_ptr.clone(), e.row_idx.clone())),
             _ => Some((
                 self.c.jacobian().col_ptr.clone(),
@@ -457,7 +457,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn jacobian_dimension(&self) -> usize {
-        match (&self.ews, &self.c.extended) {
+        match (&self.ews, self.c.extended()) {
             (Some(_), Some(e)) => e.dimension(),
             _ => self.layout.n,
         }
@@ -472,7 +472,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         self.load(t, y, yp);
-        match (&mut self.ews, &self.c.extended) {
+        match (&mut self.ews, self.c.extended()) {
             (Some(ews), Some(e)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
             _ => {
                 let c = self.c;
