@@ -20,10 +20,10 @@ pub struct Arena {
     factor_pool: Vec<(Id, i32)>,
     /// Node ids, placed by their newest operand ([`crate::hash::anchored_hash`]: work
     /// on one part of a large model finds its entries in cache; equal nodes have equal
-    /// operands, so they still meet), each with the high half of its node's content
-    /// hash. Every node except the leaves with a direct index below is stored
-    /// once, in `nodes`, and found here.
-    table: HashTable<(u32, u32)>,
+    /// operands, so they still meet), each with its hash ([`TableEntry`]). Every node
+    /// except the leaves with a direct index below is stored once, in `nodes`, and
+    /// found here.
+    table: HashTable<TableEntry>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
     /// their only index (they never enter the table).
     var_leaf: Vec<[u32; 2]>,
@@ -90,6 +90,24 @@ impl Arena {
 impl Default for Arena {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// An entry of the arena's table: a node id with its whole hash, so that growing the
+/// table re-reads no node (a large model's nodes and pools are read in random order
+/// otherwise).
+#[derive(Clone, Copy, Debug)]
+struct TableEntry {
+    id: u32,
+    /// High half of the node's content hash (also the high half of the table hash).
+    high: u32,
+    /// Low half of the table hash ([`crate::hash::anchored_hash`]).
+    low: u32,
+}
+
+impl TableEntry {
+    fn hash(&self) -> u64 {
+        (u64::from(self.high) << 32) | u64::from(self.low)
     }
 }
 
@@ -238,9 +256,9 @@ impl Arena {
         let nodes = &self.nodes;
         // Equal by content: the operands of a stored sum or product are compared, not
         // its range in the pool.
-        let same = |&(i, hi): &(u32, u32)| {
-            hi == high
-                && match (nodes[i as usize], n) {
+        let same = |e: &TableEntry| {
+            e.high == high
+                && match (nodes[e.id as usize], n) {
                     (Node::Sum(a, ca), Node::Sum(b, cb)) => {
                         ca == cb && terms[a.range()] == terms[b.range()]
                     }
@@ -248,7 +266,7 @@ impl Arena {
                     (stored, n) => stored == n,
                 }
         };
-        if let Some(&(id, _)) = self.table.find(h, same) {
+        if let Some(&TableEntry { id, .. }) = self.table.find(h, same) {
             match n {
                 Node::Sum(ts, _) => self.term_pool.truncate(ts.start()),
                 Node::Prod(fs) => self.factor_pool.truncate(fs.start()),
@@ -257,11 +275,12 @@ impl Arena {
             return Id(id);
         }
         let id = self.push_node(n);
-        // Growth re-reads each entry's node: in table order, which is nearly id order.
-        let (nodes, terms, factors) = (&self.nodes, &self.term_pool, &self.factor_pool);
-        self.table.insert_unique(h, (id.0, high), |&(i, hi)| {
-            anchored_hash(newest_operand(&nodes[i as usize], terms, factors), hi)
-        });
+        let entry = TableEntry {
+            id: id.0,
+            high,
+            low: h as u32,
+        };
+        self.table.insert_unique(h, entry, TableEntry::hash);
         id
     }
 
