@@ -9,7 +9,7 @@ use multibody::joints::Revolute;
 use multibody::parts::BodyShape;
 use multibody::prelude::*;
 use multibody::world::World;
-use multibody::{SimplifyOptions, structural_simplify_with};
+use multibody::{LinearSolverChoice, SimplifyOptions, structural_simplify_with};
 
 const G: f64 = 9.80665;
 const I_ZZ: f64 = 0.001;
@@ -263,7 +263,8 @@ fn parameters_that_are_zero_by_default_keep_their_terms() {
 /// analyses the specialized residual's, not the compiled one's: on a 20-link chain the
 /// extended Jacobian is then never built for the general residual. Without
 /// specialization the solve analyses the compiled residual's (and uses the extended one
-/// where it is worth it).
+/// where it is worth it); a solver that never uses the extended Jacobian never builds
+/// it.
 #[test]
 fn jacobians_are_analysed_on_first_use_only() {
     let ssys = structural_simplify(&chain(20, 0.5)).unwrap();
@@ -278,6 +279,19 @@ fn jacobians_are_analysed_on_first_use_only() {
         })
         .unwrap();
     assert!(ssys.compiled().jacobians_analysed().1);
+    // A solver that never uses the extended Jacobian never analyses it.
+    let ssys = structural_simplify(&chain(20, 0.5)).unwrap();
+    let problem = DaeProblem::new(&ssys, &[("rev2.phi", 0.3)], (0.0, 0.05)).unwrap();
+    for linear_solver in [LinearSolverChoice::SparsePlain, LinearSolverChoice::Dense] {
+        problem
+            .solve(&SolverOptions {
+                specialize_parameters: false,
+                linear_solver,
+                ..SolverOptions::default()
+            })
+            .unwrap();
+        assert_eq!(ssys.compiled().jacobians_analysed(), (true, false));
+    }
     let (x, y) = (
         specialized.at("rev20.phi", 0.05).unwrap(),
         general.at("rev20.phi", 0.05).unwrap(),

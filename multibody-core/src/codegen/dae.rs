@@ -161,7 +161,8 @@ impl Leaves {
     }
 }
 
-/// Compiles the residual, its Jacobian and the observed function.
+/// Compiles the residual and the observed function (their Jacobians are analysed on
+/// first use: [`CompiledDae::jacobian`], [`CompiledDae::extended`]).
 pub(crate) fn compile_dae(
     arena: &mut Arena,
     spec: &DaeSpec<'_>,

@@ -5,7 +5,7 @@ use crate::hash::HashMap;
 
 use crate::Error;
 use crate::codegen::dae::{CompiledDae, InputLayout};
-use crate::codegen::{ExtendedWorkspace, JacobianWorkspace, Workspace};
+use crate::codegen::{ExtendedJacobian, ExtendedWorkspace, JacobianWorkspace, Workspace};
 use crate::expr::{Arena, Id, Node};
 use crate::names::closest;
 use crate::simplify::SimplifiedSystem;
@@ -383,8 +383,9 @@ pub(crate) struct CompiledFunctions<'c> {
     ws: Workspace,
     /// Workspace of the plain Jacobian, made on first use.
     jws: Option<JacobianWorkspace>,
-    /// Workspace of the extended Jacobian, when it is used.
-    ews: Option<ExtendedWorkspace>,
+    /// The extended Jacobian and its workspace, when it is used (asked of `c` once, in
+    /// [`Self::new`]: the first call analyses it).
+    ews: Option<(&'c ExtendedJacobian, ExtendedWorkspace)>,
     layout: InputLayout,
 }
 
@@ -406,7 +407,7 @@ impl<'c> CompiledFunctions<'c> {
             ews: extended
                 .then(|| c.extended())
                 .flatten()
-                .map(|e| e.workspace(&c.residual)),
+                .map(|e| (e, e.workspace(&c.residual))),
             layout,
         }
     }
@@ -447,9 +448,9 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
-        match (&self.ews, self.c.extended()) {
-            (Some(_), Some(e)) => Some((e.col_ptr.clone(), e.row_idx.clone())),
-            _ => Some((
+        match &self.ews {
+            Some((e, _)) => Some((e.col_ptr.clone(), e.row_idx.clone())),
+            None => Some((
                 self.c.jacobian().col_ptr.clone(),
                 self.c.jacobian().row_idx.clone(),
             )),
@@ -457,9 +458,9 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn jacobian_dimension(&self) -> usize {
-        match (&self.ews, self.c.extended()) {
-            (Some(_), Some(e)) => e.dimension(),
-            _ => self.layout.n,
+        match &self.ews {
+            Some((e, _)) => e.dimension(),
+            None => self.layout.n,
         }
     }
 
@@ -472,9 +473,9 @@ impl DaeFunctions for CompiledFunctions<'_> {
         values: &mut [f64],
     ) -> Result<(), EvalError> {
         self.load(t, y, yp);
-        match (&mut self.ews, self.c.extended()) {
-            (Some(ews), Some(e)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
-            _ => {
+        match &mut self.ews {
+            Some((e, ews)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
+            None => {
                 let c = self.c;
                 let jws = self
                     .jws
