@@ -16,21 +16,26 @@ const I_ZZ: f64 = 0.001;
 
 /// `n` revolute joints about z, each link a BodyShape with its mass at the tip.
 fn chain(n: usize, length: f64) -> System {
+    chain_of(
+        n,
+        &BodyShape {
+            r: [length, 0.0, 0.0],
+            r_CM: Some([length, 0.0, 0.0]),
+            m: 1.0,
+            I_diag: [I_ZZ, I_ZZ, I_ZZ],
+            ..Default::default()
+        },
+    )
+}
+
+/// `n` revolute joints about z, each link a copy of `link`.
+fn chain_of(n: usize, link: &BodyShape) -> System {
     let mut m = System::new(format!("chain{n}"));
     let world = m.add_typed("world", &World::default());
     let mut prev = world.frame_b;
     for k in 1..=n {
         let joint = m.add_typed(&format!("rev{k}"), &Revolute::default());
-        let link = m.add_typed(
-            &format!("link{k}"),
-            &BodyShape {
-                r: [length, 0.0, 0.0],
-                r_CM: Some([length, 0.0, 0.0]),
-                m: 1.0,
-                I_diag: [I_ZZ, I_ZZ, I_ZZ],
-                ..Default::default()
-            },
-        );
+        let link = m.add_typed(&format!("link{k}"), link);
         m.connect_handles(&prev, &joint.frame_a);
         m.connect_handles(&joint.frame_b, &link.frame_a);
         prev = link.frame_b;
@@ -151,27 +156,17 @@ fn specialized_and_general_functions_integrate_the_same_trajectory() {
 /// `r_CM[3]`), a product of inertia `I_21` and a frame offset `r[2]`: parameters that
 /// are 0 in [`chain`].
 fn offset_chain(n: usize) -> System {
-    let mut m = System::new(format!("offset_chain{n}"));
-    let world = m.add_typed("world", &World::default());
-    let mut prev = world.frame_b;
-    for k in 1..=n {
-        let joint = m.add_typed(&format!("rev{k}"), &Revolute::default());
-        let link = m.add_typed(
-            &format!("link{k}"),
-            &BodyShape {
-                r: OFFSET_R,
-                r_CM: Some(OFFSET_R_CM),
-                m: 1.0,
-                I_diag: [I_ZZ, I_ZZ, I_ZZ],
-                I_offdiag: [OFFSET_I_21, 0.0, 0.0],
-                ..Default::default()
-            },
-        );
-        m.connect_handles(&prev, &joint.frame_a);
-        m.connect_handles(&joint.frame_b, &link.frame_a);
-        prev = link.frame_b;
-    }
-    m
+    chain_of(
+        n,
+        &BodyShape {
+            r: OFFSET_R,
+            r_CM: Some(OFFSET_R_CM),
+            m: 1.0,
+            I_diag: [I_ZZ, I_ZZ, I_ZZ],
+            I_offdiag: [OFFSET_I_21, 0.0, 0.0],
+            ..Default::default()
+        },
+    )
 }
 
 const OFFSET_R: [f64; 3] = [0.5, 0.03, 0.0];
