@@ -113,6 +113,12 @@ impl DefaultZero {
         }
     }
 
+    /// Entries of row `row` (its `entries`) that count: those not vanishing at the
+    /// defaults.
+    fn counted(&self, row: usize, entries: &[(usize, Id)]) -> usize {
+        entries.iter().filter(|e| !self.contains(row, e.0)).count()
+    }
+
     /// Removes the entry; whether it was there.
     fn remove(&mut self, row: usize, var: usize) -> bool {
         let vars = &mut self.0[row];
@@ -201,11 +207,7 @@ pub(crate) fn pre_eliminate(
             if !row_alive[i] {
                 continue;
             }
-            let len = r
-                .entries
-                .iter()
-                .filter(|e| !default_zero.contains(i, e.0))
-                .count();
+            let len = default_zero.counted(i, &r.entries);
             for &(j, a) in &r.entries {
                 if default_zero.contains(i, j) {
                     continue;
@@ -236,11 +238,7 @@ pub(crate) fn pre_eliminate(
             if default_zero.contains(i, j) {
                 continue;
             }
-            let len = rows[i]
-                .entries
-                .iter()
-                .filter(|e| !default_zero.contains(i, e.0))
-                .count();
+            let len = default_zero.counted(i, &rows[i].entries);
             let now = (len - 1) * (col_count[j] - 1);
             if now > max_fill
                 || !acceptable_pivot(
