@@ -1,7 +1,9 @@
 //! The process-wide arena behind [`Expr`], with named symbols as leaves.
 
 use crate::hash::HashMap;
+use hashbrown::HashTable;
 use std::fmt;
+use std::hash::BuildHasher;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 use std::sync::{LazyLock, Mutex, MutexGuard};
 
@@ -10,35 +12,65 @@ use super::{Arena, Cmp, Func1, Func2, Id, NameResolver, Node};
 /// The global arena and its symbol table.
 pub(crate) struct Global {
     pub(crate) arena: Arena,
-    symbols: Vec<Box<str>>,
-    symbol_ids: HashMap<Box<str>, u32>,
+    /// Every symbol's name, one after the other (one buffer: no allocation per name,
+    /// and the names of one model lie in the order they were made).
+    text: String,
+    /// Where each symbol's name ends in `text`; it starts where the previous one ends.
+    ends: Vec<usize>,
+    /// Symbol ids placed by the hash of their names, each with that hash (growing the
+    /// table reads no name).
+    table: HashTable<SymbolEntry>,
+}
+
+/// An entry of the symbol table: a symbol id and the hash of its name.
+#[derive(Clone, Copy)]
+struct SymbolEntry {
+    id: u32,
+    hash: u64,
+}
+
+/// The hash of a symbol name.
+fn name_hash(name: &str) -> u64 {
+    crate::hash::FastBuild::default().hash_one(name)
 }
 
 impl Global {
     /// Interns a symbol name.
     pub(crate) fn symbol(&mut self, name: &str) -> u32 {
-        if let Some(&i) = self.symbol_ids.get(name) {
+        let hash = name_hash(name);
+        if let Some(i) = self.find(name, hash) {
             return i;
         }
-        let i = self.symbols.len() as u32;
-        self.symbols.push(name.into());
-        self.symbol_ids.insert(name.into(), i);
+        let i = u32::try_from(self.ends.len()).expect("fewer than 2^32 symbols");
+        self.text.push_str(name);
+        self.ends.push(self.text.len());
+        self.table
+            .insert_unique(hash, SymbolEntry { id: i, hash }, |e| e.hash);
         i
+    }
+
+    /// The symbol named `name`, whose name hashes to `hash`.
+    fn find(&self, name: &str, hash: u64) -> Option<u32> {
+        self.table
+            .find(hash, |e| e.hash == hash && self.name(e.id) == name)
+            .map(|e| e.id)
     }
 
     /// The id of an interned symbol name.
     pub(crate) fn lookup(&self, name: &str) -> Option<u32> {
-        self.symbol_ids.get(name).copied()
+        self.find(name, name_hash(name))
     }
 
     /// The name of a symbol.
     pub(crate) fn name(&self, sym: u32) -> &str {
-        &self.symbols[sym as usize]
+        let i = sym as usize;
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        &self.text[start..self.ends[i]]
     }
 
     /// Number of interned symbols.
     pub(crate) fn n_symbols(&self) -> usize {
-        self.symbols.len()
+        self.ends.len()
     }
 }
 
@@ -54,8 +86,9 @@ impl NameResolver for Global {
 static GLOBAL: LazyLock<Mutex<Global>> = LazyLock::new(|| {
     Mutex::new(Global {
         arena: Arena::new(),
-        symbols: Vec::new(),
-        symbol_ids: HashMap::default(),
+        text: String::new(),
+        ends: Vec::new(),
+        table: HashTable::new(),
     })
 });
 
@@ -360,5 +393,38 @@ impl std::iter::Sum for Expr {
     fn sum<I: Iterator<Item = Expr>>(iter: I) -> Expr {
         let ids: Vec<Id> = iter.map(|e| e.0).collect();
         Expr(with(|a| a.sum(&ids)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn symbols_are_interned_once_and_keep_their_names() {
+        let mut g = Global {
+            arena: Arena::new(),
+            text: String::new(),
+            ends: Vec::new(),
+            table: HashTable::new(),
+        };
+        // Names that are prefixes of each other, the empty name, and enough names to
+        // grow the table several times.
+        let names: Vec<String> = ["", "a", "a.b", "a.bc", "a.b.c", "der(a.b)"]
+            .iter()
+            .map(|s| s.to_string())
+            .chain((0..5000).map(|k| format!("chain.inertia{k}.flange_a.phi")))
+            .collect();
+        let ids: Vec<u32> = names.iter().map(|n| g.symbol(n)).collect();
+        assert_eq!(g.n_symbols(), names.len());
+        for (k, (n, &id)) in names.iter().zip(&ids).enumerate() {
+            assert_eq!(id as usize, k, "ids in the order of first use");
+            assert_eq!(g.name(id), n);
+            assert_eq!(g.symbol(n), id, "interning again gives the same id");
+            assert_eq!(g.lookup(n), Some(id));
+        }
+        assert_eq!(g.n_symbols(), names.len(), "nothing interned twice");
+        assert_eq!(g.lookup("a.b.d"), None);
+        assert_eq!(g.lookup("chain.inertia5000.flange_a.phi"), None);
     }
 }
