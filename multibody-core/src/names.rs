@@ -6,33 +6,61 @@ use crate::hash::HashMap;
 
 /// A list of names with a lookup by name that is built on the first lookup, so a
 /// system compiled once and solved many times hashes its names once, and one that is
-/// never asked for a name by its text never hashes them at all.
-#[derive(Debug, Default)]
+/// never asked for a name by its text never hashes them at all. The list itself may be
+/// made on first use too ([`NameIndex::lazy`]): compiling a large model then touches
+/// none of its names.
+#[derive(Default)]
 pub struct NameIndex {
-    names: Vec<Arc<str>>,
+    names: OnceLock<Vec<Arc<str>>>,
+    /// What makes `names` when it is first asked for (`None` once given).
+    source: Option<NameSource>,
+    /// The index of `names` (the first of equal names wins a lookup).
     index: OnceLock<HashMap<Arc<str>, usize>>,
 }
 
+/// A function that lists names.
+type NameSource = Box<dyn Fn() -> Vec<Arc<str>> + Send + Sync>;
+
+impl std::fmt::Debug for NameIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NameIndex")
+            .field("names", &self.names.get())
+            .finish_non_exhaustive()
+    }
+}
+
 impl NameIndex {
-    /// The index of `names` (the first of equal names wins a lookup).
+    /// An index of these names.
     pub fn new(names: Vec<Arc<str>>) -> Self {
         NameIndex {
-            names,
+            names: OnceLock::from(names),
+            source: None,
+            index: OnceLock::new(),
+        }
+    }
+
+    /// An index whose names `source` lists when they are first asked for.
+    pub fn lazy(source: impl Fn() -> Vec<Arc<str>> + Send + Sync + 'static) -> Self {
+        NameIndex {
+            names: OnceLock::new(),
+            source: Some(Box::new(source)),
             index: OnceLock::new(),
         }
     }
 
     /// The names, in order.
     pub fn names(&self) -> &[Arc<str>] {
-        &self.names
+        self.names
+            .get_or_init(|| self.source.as_ref().map(|f| f()).unwrap_or_default())
     }
 
     /// The position of `name`.
     pub fn position(&self, name: &str) -> Option<usize> {
         let index = self.index.get_or_init(|| {
+            let names = self.names();
             let mut map = HashMap::default();
-            map.reserve(self.names.len());
-            for (i, n) in self.names.iter().enumerate() {
+            map.reserve(names.len());
+            for (i, n) in names.iter().enumerate() {
                 map.entry(n.clone()).or_insert(i);
             }
             map
@@ -42,7 +70,7 @@ impl NameIndex {
 
     /// Up to `n` names closest to `name` (see [`closest`]).
     pub fn closest(&self, name: &str, n: usize) -> Vec<String> {
-        closest(name, self.names.iter().map(|s| &**s), n)
+        closest(name, self.names().iter().map(|s| &**s), n)
     }
 }
 

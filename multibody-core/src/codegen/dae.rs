@@ -90,7 +90,9 @@ pub(crate) struct DaeSpec<'a> {
     pub derivative_inputs: &'a [(Id, usize)],
     pub rows: &'a [Row],
     /// Observed outputs.
-    pub observed: &'a [(Arc<str>, Id)],
+    pub observed: &'a [Id],
+    /// Their names (a lazy index: compiling touches no name).
+    pub observed_names: Arc<crate::names::NameIndex>,
     pub n_params: usize,
     /// Names of leaves, for messages.
     pub names: &'a dyn Fn(Id) -> String,
@@ -187,16 +189,14 @@ pub(crate) fn compile_dae(
     let n_rows = spec.rows.len();
     // The observed variables are outputs of the same builder: the statements are
     // compiled once for both tapes.
-    let mut observed_names = Vec::with_capacity(spec.observed.len());
-    for (name, e) in spec.observed {
-        b.output(*e)?;
-        observed_names.push(name.clone());
+    for &e in spec.observed {
+        b.output(e)?;
     }
     let residual = b.build_outputs(0..n_rows);
     let observed = Arc::new(b.build_outputs(n_rows..n_rows + spec.observed.len()));
     // The Jacobians are analysed on first use: a solve with the parameters specialized
     // (the default) analyses the specialized residual instead, never this one.
-    let observed_names = Arc::new(crate::names::NameIndex::new(observed_names));
+    let observed_names = spec.observed_names.clone();
     Ok(CompiledDae {
         layout,
         residual,

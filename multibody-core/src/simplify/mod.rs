@@ -276,7 +276,7 @@ pub fn structural_simplify_with(
 
     // Code generation.
     let t2 = Instant::now();
-    let observed = observed_outputs(&variables, &aliases.replaced, &reduced);
+    let (observed, observed_names) = observed_outputs(&variables, &aliases.replaced, &reduced);
     let code_rows: Vec<Row> = rows
         .iter()
         .map(|r| match *r {
@@ -294,6 +294,7 @@ pub fn structural_simplify_with(
             derivative_inputs: &derivative_inputs,
             rows: &code_rows,
             observed: &observed,
+            observed_names,
             n_params: flat.parameters.len(),
             names: &|id| {
                 reduced
@@ -374,12 +375,13 @@ pub fn structural_simplify_with(
 }
 
 /// Every variable of the model (replaced ones by their expression) and every
-/// derivative slot, as observed outputs.
+/// derivative slot, as observed outputs, with their names: made when first asked for
+/// (compiling a large model would otherwise touch every variable's name once more).
 fn observed_outputs(
-    variables: &[Variable],
+    variables: &Arc<Vec<Variable>>,
     replaced: &[Option<Id>],
     reduced: &reduce::Reduced,
-) -> Vec<(Arc<str>, Id)> {
+) -> (Vec<Id>, Arc<crate::names::NameIndex>) {
     let mut out = Vec::with_capacity(variables.len() + reduced.slots.len());
     let mut var_leaf: Vec<Option<Id>> = vec![None; variables.len()];
     for s in &reduced.slots {
@@ -387,17 +389,27 @@ fn observed_outputs(
             var_leaf[s.var] = Some(s.leaf);
         }
     }
-    for (i, v) in variables.iter().enumerate() {
-        let e = match replaced[i] {
-            Some(r) => r,
-            None => var_leaf[i].expect("every kept variable has a slot"),
-        };
-        out.push((v.name.clone(), e));
+    for (i, r) in replaced.iter().enumerate() {
+        out.push(r.unwrap_or_else(|| var_leaf[i].expect("every kept variable has a slot")));
     }
+    // Derivative slots, by variable and order.
+    let mut derivatives: Vec<(usize, usize)> = Vec::new();
     for s in &reduced.slots {
         if s.order > 0 {
-            out.push((s.name.clone(), s.leaf));
+            out.push(s.leaf);
+            derivatives.push((s.var, s.order));
         }
     }
-    out
+    let variables = variables.clone();
+    let names = crate::names::NameIndex::lazy(move || {
+        let mut names: Vec<Arc<str>> = Vec::with_capacity(variables.len() + derivatives.len());
+        names.extend(variables.iter().map(|v| v.name.clone()));
+        names.extend(
+            derivatives
+                .iter()
+                .map(|&(var, order)| reduce::derivative_name(&variables[var].name, order).into()),
+        );
+        names
+    });
+    (out, Arc::new(names))
 }

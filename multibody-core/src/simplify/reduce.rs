@@ -136,6 +136,20 @@ impl SlotTable<'_> {
     }
 }
 
+/// The name of the `order`-th derivative of the variable `name`: `der(der(x))`, as
+/// slots name them.
+pub(crate) fn derivative_name(name: &str, order: usize) -> String {
+    let mut out = String::with_capacity(name.len() + 5 * order);
+    for _ in 0..order {
+        out.push_str("der(");
+    }
+    out.push_str(name);
+    for _ in 0..order {
+        out.push(')');
+    }
+    out
+}
+
 /// Variables of a residual as slots (`Var` and `der` leaves; parameters and time are
 /// known).
 pub(crate) fn incidence(table: &mut SlotTable<'_>, e: Id) -> Vec<usize> {

@@ -212,3 +212,35 @@ fn pendulum_translation_report() {
         assert!(observed.contains(&n.to_string()), "{observed:?}");
     }
 }
+
+#[test]
+fn derivative_names_are_made_when_asked_and_match_the_slots() {
+    // x'' = -x written with a second derivative: the slots der(x) and der(der(x)).
+    let mut s = System::new("second_order");
+    let x = s.variable(Variable::new("x").start(1.0).fixed(true));
+    s.equation(x.der().der(), -x);
+    let ssys = structural_simplify(&s).unwrap();
+    let names = ssys.variable_names();
+    let derivative_slots: Vec<&str> = ssys
+        .slots
+        .iter()
+        .filter(|s| s.order > 0)
+        .map(|s| &*s.name)
+        .collect();
+    assert!(
+        derivative_slots.contains(&"der(der(x))"),
+        "{derivative_slots:?}"
+    );
+    for slot in derivative_slots {
+        assert!(
+            names.iter().any(|n| n == slot),
+            "{slot} missing from {names:?}"
+        );
+    }
+    let prob = DaeProblem::new(&ssys, &[], (0.0, 1.0)).unwrap();
+    let sol = prob.solve(&SolverOptions::default()).unwrap();
+    // x = cos t, so der(der(x)) = -cos t.
+    let acc = sol.get("der(der(x))").unwrap();
+    let last = acc.len() - 1;
+    assert!((acc[last] + 1f64.cos()).abs() < 1e-3, "{}", acc[last]);
+}

@@ -276,8 +276,11 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .iter()
         .map(|&(r, _)| Row::Expr(r))
         .collect();
-    let unnamed: Arc<str> = Arc::from("");
-    let observed: Vec<(Arc<str>, Id)> = unknowns.iter().map(|&l| (unnamed.clone(), l)).collect();
+    let n_unknowns = unknowns.len();
+    let unnamed = Arc::new(crate::names::NameIndex::lazy(move || {
+        let unnamed: Arc<str> = Arc::from("");
+        vec![unnamed; n_unknowns]
+    }));
     let compiled = compile_dae(
         &mut arena,
         &DaeSpec {
@@ -285,7 +288,8 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             unknowns: &schedule.iteration,
             derivative_inputs: &[],
             rows: &rows,
-            observed: &observed,
+            observed: &unknowns,
+            observed_names: unnamed,
             n_params: np + nv,
             names: &|id| {
                 sys.slot_of
