@@ -193,11 +193,8 @@ pub fn structural_simplify_with(
         &mut temps,
     )
     .map_err(|s| {
-        let name_of = |&l: &Id| {
-            reduced.slots[reduced.slot_of.get(l).expect("a slot")]
-                .name
-                .to_string()
-        };
+        let name_of =
+            |&l: &Id| reduced.slots[reduced.slot_of.get(l).expect("a slot")].name(&variables);
         SimplifyError::singular(
             &name,
             s.over_equations
@@ -300,7 +297,7 @@ pub fn structural_simplify_with(
                 reduced
                     .slot_of
                     .get(id)
-                    .map(|s| reduced.slots[s].name.to_string())
+                    .map(|s| reduced.slots[s].name(&variables))
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },

@@ -2,8 +2,6 @@
 //! integer graph for Pantelides, symbolic differentiation of the equations it marks, and
 //! dummy-derivative state selection.
 
-use std::sync::Arc;
-
 use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
@@ -25,8 +23,14 @@ pub struct Slot {
     pub var: usize,
     /// How many times `var` is differentiated (0 for the variable itself).
     pub order: usize,
-    /// Display name: `j1.phi`, `der(j1.w)`.
-    pub name: Arc<str>,
+}
+
+impl Slot {
+    /// Display name (`j1.phi`, `der(j1.w)`), from the flat variables: made when asked
+    /// for, so building the slots of a large model touches no name.
+    pub fn name(&self, variables: &[Variable]) -> String {
+        derivative_name(&variables[self.var].name, self.order)
+    }
 }
 
 /// An equation of the reduced system.
@@ -84,12 +88,6 @@ fn canonical_leaf(arena: &mut Arena, e: Id, dmap: &HashMap<Id, Id>) -> Id {
 }
 
 /// The slot of `leaf`, which exists.
-fn below_slot(slot_of: &IdIndex, leaf: Id) -> usize {
-    slot_of
-        .get(leaf)
-        .expect("the slot below a derivative exists")
-}
-
 /// Builds slots for the leaves of the equations and for every kept variable.
 pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,
@@ -114,23 +112,8 @@ impl SlotTable<'_> {
             }
             n => panic!("slot of a non-variable leaf {n:?}"),
         };
-        let name: Arc<str> = match self.arena.node(leaf) {
-            Node::Var(_) => self.variables[var].name.clone(),
-            _ => {
-                let inner = match self.arena.node(leaf) {
-                    Node::Der(i) => *i,
-                    _ => unreachable!(),
-                };
-                format!("der({})", self.slots[below_slot(&self.slot_of, inner)].name).into()
-            }
-        };
         let s = self.slots.len();
-        self.slots.push(Slot {
-            leaf,
-            var,
-            order,
-            name,
-        });
+        self.slots.push(Slot { leaf, var, order });
         self.slot_of.insert(leaf, s);
         s
     }
@@ -268,7 +251,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         }) => {
             let names = |vs: &[usize]| -> Vec<String> {
                 vs.iter()
-                    .map(|&v| table.slots[v].name.to_string())
+                    .map(|&v| table.slots[v].name(table.variables))
                     .collect()
             };
             return Err(SimplifyError::singular(
@@ -350,7 +333,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                     equations.iter().map(|&e| eqs[e].text.to_string()).collect(),
                     candidates
                         .iter()
-                        .map(|&v| table.slots[v].name.to_string())
+                        .map(|&v| table.slots[v].name(table.variables))
                         .collect(),
                     Vec::new(),
                 ));
@@ -363,7 +346,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                      model leave fewer degrees of freedom",
                         slots
                             .iter()
-                            .map(|&v| format!("`{}`", table.slots[v].name))
+                            .map(|&v| format!("`{}`", table.slots[v].name(table.variables)))
                             .collect::<Vec<_>>()
                             .join(", ")
                     ),
@@ -393,7 +376,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                         .iter()
                         .filter(|v| level.dummies.contains(v) == dummy)
                         .filter_map(|&v| anti[v])
-                        .map(|v| table.slots[v].name.to_string())
+                        .map(|v| table.slots[v].name(table.variables))
                         .collect()
                 };
                 let shown: Vec<String> = level

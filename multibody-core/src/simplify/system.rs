@@ -369,7 +369,7 @@ impl SimplifiedSystem {
     /// (the initialization adds its own temporaries).
     pub(crate) fn leaf_name_in(&self, arena: &Arena, leaf: Id) -> String {
         match self.slot_of.get(leaf) {
-            Some(s) => self.slots[s].name.to_string(),
+            Some(s) => self.slots[s].name(&self.variables),
             None => arena.display(leaf, &self.resolver()),
         }
     }

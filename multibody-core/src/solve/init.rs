@@ -36,8 +36,8 @@ enum InitText<'a> {
     Initial(&'a str),
     /// The fixed start value of a variable.
     FixedStart(&'a str),
-    /// A start value assumed to complete the initial conditions.
-    AssumedStart(&'a str),
+    /// A start value assumed to complete the initial conditions (the slot's name).
+    AssumedStart(String),
 }
 
 impl std::fmt::Display for InitText<'_> {
@@ -211,8 +211,9 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             } else {
                 slot.leaf
             };
-            eqs.push((r, InitText::AssumedStart(&slot.name)));
-            assumed.push((slot.name.to_string(), value));
+            let name = slot.name(&sys.variables);
+            eqs.push((r, InitText::AssumedStart(name.clone())));
+            assumed.push((name, value));
             deficiency -= 1;
         } else {
             eq_to_var.pop();
@@ -294,7 +295,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             names: &|id| {
                 sys.slot_of
                     .get(id)
-                    .map(|s| sys.slots[s].name.to_string())
+                    .map(|s| sys.slots[s].name(&sys.variables))
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },
