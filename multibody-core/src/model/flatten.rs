@@ -166,22 +166,23 @@ impl FlatSystem {
     }
 }
 
-struct ConnectorInfo {
-    class: String,
+struct ConnectorInfo<'s> {
+    class: &'s str,
     /// Parent system's path.
-    owner: String,
+    owner: &'s str,
     vars: Vec<(usize, VarKind)>,
     connected_inside: bool,
 }
 
-struct Flattener<'g> {
+struct Flattener<'g, 's> {
     g: &'g crate::expr::global::Global,
     flat: FlatSystem,
     /// Flat index of each declared variable and parameter, by global symbol.
     var_of_sym: Vec<u32>,
     param_of_sym: Vec<u32>,
-    connectors: Vec<ConnectorInfo>,
-    connector_of_path: HashMap<String, usize>,
+    connectors: Vec<ConnectorInfo<'s>>,
+    /// Connectors by path (borrowed from the model: no copy of a path).
+    connector_of_path: HashMap<&'s str, usize>,
     memo: NodeMap,
     /// Declarations whose names were never interned (pushed by hand): for duplicates.
     unnamed: HashMap<Arc<str>, u32>,
@@ -340,8 +341,8 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     Ok(f.flat)
 }
 
-impl Flattener<'_> {
-    fn declare(&mut self, s: &System) {
+impl<'s> Flattener<'_, 's> {
+    fn declare(&mut self, s: &'s System) {
         let mut conn_vars = Vec::new();
         for v in &s.variables {
             let idx = self.flat.variables.len() as u32;
@@ -374,13 +375,13 @@ impl Flattener<'_> {
         }
         if let Some(class) = &s.connector_class {
             let owner = match s.path.rfind('.') {
-                Some(i) => s.path[..i].to_string(),
-                None => String::new(),
+                Some(i) => &s.path[..i],
+                None => "",
             };
             self.connector_of_path
-                .insert(s.path.clone(), self.connectors.len());
+                .insert(s.path.as_str(), self.connectors.len());
             self.connectors.push(ConnectorInfo {
-                class: class.clone(),
+                class: class.as_str(),
                 owner,
                 vars: conn_vars,
                 connected_inside: false,
@@ -475,7 +476,7 @@ impl Flattener<'_> {
         Some(r)
     }
 
-    fn connections(&mut self, order: &[&System]) {
+    fn connections(&mut self, order: &[&'s System]) {
         let nv = self.flat.variables.len();
         let mut pot_parent: Vec<usize> = (0..nv).collect();
         // Flow connection sets over elements (connector, inside?).
@@ -508,9 +509,9 @@ impl Flattener<'_> {
                     self.errors.push(ModelError::IncompatibleConnectors {
                         connection: text(),
                         a: join_path(&s.path, &c.a),
-                        class_a: ca.class.clone(),
+                        class_a: ca.class.to_string(),
                         b: join_path(&s.path, &c.b),
-                        class_b: cb.class.clone(),
+                        class_b: cb.class.to_string(),
                     });
                     continue;
                 }
@@ -646,7 +647,7 @@ impl Flattener<'_> {
             .connector_of_path
             .keys()
             .filter(|k| k.starts_with(&prefix))
-            .map(|k| k.as_str())
+            .copied()
             .collect();
         let mut candidates = candidates;
         candidates.sort();
