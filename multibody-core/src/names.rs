@@ -12,7 +12,7 @@ use crate::hash::HashMap;
 #[derive(Default)]
 pub struct NameIndex {
     names: OnceLock<Vec<Arc<str>>>,
-    /// What makes `names` when it is first asked for (`None` once given).
+    /// What makes `names` when it is first asked for (`None` when they were given).
     source: Option<NameSource>,
     /// The index of `names` (the first of equal names wins a lookup).
     index: OnceLock<HashMap<Arc<str>, usize>>,
@@ -54,7 +54,7 @@ impl NameIndex {
             .get_or_init(|| self.source.as_ref().map(|f| f()).unwrap_or_default())
     }
 
-    /// The position of `name`.
+    /// The position of `name` (the first of equal names wins).
     pub fn position(&self, name: &str) -> Option<usize> {
         let index = self.index.get_or_init(|| {
             let names = self.names();
@@ -161,5 +161,22 @@ mod tests {
         assert_eq!(index.position("j2.v"), None);
         assert_eq!(index.closest("j2.v", 1), vec!["j2.s"]);
         assert_eq!(index.names().len(), 4);
+    }
+
+    #[test]
+    fn a_lazy_index_lists_its_names_once_on_first_use() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let calls = Arc::new(AtomicUsize::new(0));
+        let counter = calls.clone();
+        let index = NameIndex::lazy(move || {
+            counter.fetch_add(1, Ordering::SeqCst);
+            vec![Arc::from("x"), Arc::from("der(x)")]
+        });
+        assert_eq!(calls.load(Ordering::SeqCst), 0, "nothing listed before use");
+        assert_eq!(index.position("der(x)"), Some(1));
+        assert_eq!(index.names().len(), 2);
+        assert_eq!(index.closest("der(y)", 1), vec!["der(x)"]);
+        assert_eq!(calls.load(Ordering::SeqCst), 1, "listed once");
+        assert!(NameIndex::default().names().is_empty());
     }
 }

@@ -91,7 +91,8 @@ pub(crate) struct DaeSpec<'a> {
     pub rows: &'a [Row],
     /// Observed outputs.
     pub observed: &'a [Id],
-    /// Their names (a lazy index: compiling touches no name).
+    /// Their names: exactly one per entry of `observed`, in the same order (a lazy
+    /// index lets compiling touch no name).
     pub observed_names: Arc<crate::names::NameIndex>,
     pub n_params: usize,
     /// Names of leaves, for messages.

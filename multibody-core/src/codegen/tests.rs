@@ -724,6 +724,9 @@ fn tape_is_send_and_sync() {
     fn check<T: Send + Sync + Clone>() {}
     check::<Tape>();
     check::<DaeJacobian>();
+    fn shared<T: Send + Sync>() {}
+    shared::<crate::names::NameIndex>();
+    shared::<super::dae::CompiledDae>();
 }
 
 /// Whether no two columns that share a row have the same colour.

@@ -35,6 +35,16 @@ fn name_hash(name: &str) -> u64 {
 }
 
 impl Global {
+    /// An empty arena and symbol table.
+    fn new() -> Self {
+        Global {
+            arena: Arena::new(),
+            text: String::new(),
+            ends: Vec::new(),
+            table: HashTable::new(),
+        }
+    }
+
     /// Interns a symbol name.
     pub(crate) fn symbol(&mut self, name: &str) -> u32 {
         let hash = name_hash(name);
@@ -83,14 +93,7 @@ impl NameResolver for Global {
     }
 }
 
-static GLOBAL: LazyLock<Mutex<Global>> = LazyLock::new(|| {
-    Mutex::new(Global {
-        arena: Arena::new(),
-        text: String::new(),
-        ends: Vec::new(),
-        table: HashTable::new(),
-    })
-});
+static GLOBAL: LazyLock<Mutex<Global>> = LazyLock::new(|| Mutex::new(Global::new()));
 
 /// Locks the global arena (a poisoned lock is recovered: the arena is append-only and
 /// stays consistent).
@@ -402,12 +405,7 @@ mod tests {
 
     #[test]
     fn symbols_are_interned_once_and_keep_their_names() {
-        let mut g = Global {
-            arena: Arena::new(),
-            text: String::new(),
-            ends: Vec::new(),
-            table: HashTable::new(),
-        };
+        let mut g = Global::new();
         // Names that are prefixes of each other, the empty name, and enough names to
         // grow the table several times.
         let names: Vec<String> = ["", "a", "a.b", "a.bc", "a.b.c", "der(a.b)"]

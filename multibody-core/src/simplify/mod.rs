@@ -389,7 +389,8 @@ fn observed_outputs(
     for (i, r) in replaced.iter().enumerate() {
         out.push(r.unwrap_or_else(|| var_leaf[i].expect("every kept variable has a slot")));
     }
-    // Derivative slots, by variable and order.
+    debug_assert_eq!(replaced.len(), variables.len());
+    // (var, order) of each derivative slot, in slot order.
     let mut derivatives: Vec<(usize, usize)> = Vec::new();
     for s in &reduced.slots {
         if s.order > 0 {

@@ -28,6 +28,9 @@ pub struct Slot {
 impl Slot {
     /// Display name (`j1.phi`, `der(j1.w)`), from the flat variables: made when asked
     /// for, so building the slots of a large model touches no name.
+    ///
+    /// # Panics
+    /// If `variables` is not the flat variable list of the slot's system (too short).
     pub fn name(&self, variables: &[Variable]) -> String {
         derivative_name(&variables[self.var].name, self.order)
     }
@@ -87,7 +90,6 @@ fn canonical_leaf(arena: &mut Arena, e: Id, dmap: &HashMap<Id, Id>) -> Id {
     }
 }
 
-/// The slot of `leaf`, which exists.
 /// Builds slots for the leaves of the equations and for every kept variable.
 pub(crate) struct SlotTable<'a> {
     pub arena: &'a mut Arena,

@@ -28,7 +28,8 @@ use super::error::InitError;
 use super::newton::{NewtonOptions, newton};
 
 /// What an equation of the initialization system is, shown in its error messages
-/// (written out only then).
+/// (written out only then; an assumed start carries its slot's name, which the report
+/// of assumed values needs anyway).
 enum InitText<'a> {
     /// An equation of the simplified model.
     Model(&'a EquationText),
@@ -278,9 +279,8 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .map(|&(r, _)| Row::Expr(r))
         .collect();
     let n_unknowns = unknowns.len();
-    let unnamed = Arc::new(crate::names::NameIndex::lazy(move || {
-        let unnamed: Arc<str> = Arc::from("");
-        vec![unnamed; n_unknowns]
+    let observed_names = Arc::new(crate::names::NameIndex::lazy(move || {
+        vec![Arc::from(""); n_unknowns]
     }));
     let compiled = compile_dae(
         &mut arena,
@@ -290,7 +290,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             derivative_inputs: &[],
             rows: &rows,
             observed: &unknowns,
-            observed_names: unnamed,
+            observed_names,
             n_params: np + nv,
             names: &|id| {
                 sys.slot_of
