@@ -195,16 +195,15 @@ pub(crate) fn compile_dae(
     }
     let residual = b.build_outputs(0..n_rows);
     let observed = Arc::new(b.build_outputs(n_rows..n_rows + spec.observed.len()));
-    // The Jacobians are analysed on first use: a solve with the parameters specialized
-    // (the default) analyses the specialized residual instead, never this one.
-    let observed_names = spec.observed_names.clone();
     Ok(CompiledDae {
         layout,
         residual,
+        // Analysed on first use: a solve with the parameters specialized (the default)
+        // analyses the specialized residual instead, never this one.
         jacobian: std::sync::OnceLock::new(),
         extended: std::sync::OnceLock::new(),
         observed,
-        observed_names,
+        observed_names: spec.observed_names.clone(),
     })
 }
 

@@ -386,27 +386,22 @@ fn observed_outputs(
             var_leaf[s.var] = Some(s.leaf);
         }
     }
+    debug_assert_eq!(replaced.len(), variables.len());
     for (i, r) in replaced.iter().enumerate() {
         out.push(r.unwrap_or_else(|| var_leaf[i].expect("every kept variable has a slot")));
     }
-    debug_assert_eq!(replaced.len(), variables.len());
-    // (var, order) of each derivative slot, in slot order.
-    let mut derivatives: Vec<(usize, usize)> = Vec::new();
-    for s in &reduced.slots {
-        if s.order > 0 {
-            out.push(s.leaf);
-            derivatives.push((s.var, s.order));
-        }
-    }
+    let derivatives: Vec<reduce::Slot> = reduced
+        .slots
+        .iter()
+        .filter(|s| s.order > 0)
+        .cloned()
+        .collect();
+    out.extend(derivatives.iter().map(|s| s.leaf));
     let variables = variables.clone();
     let names = crate::names::NameIndex::lazy(move || {
         let mut names: Vec<Arc<str>> = Vec::with_capacity(variables.len() + derivatives.len());
         names.extend(variables.iter().map(|v| v.name.clone()));
-        names.extend(
-            derivatives
-                .iter()
-                .map(|&(var, order)| reduce::derivative_name(&variables[var].name, order).into()),
-        );
+        names.extend(derivatives.iter().map(|s| s.name(&variables).into()));
         names
     });
     (out, Arc::new(names))

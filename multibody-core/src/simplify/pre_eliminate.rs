@@ -301,16 +301,16 @@ pub(crate) fn pre_eliminate(
                                 (Some(v), _, _) => v == 0.0,
                                 _ => false,
                             };
-                            let was = !default_zero.contains(r, k);
+                            let was_counted = !default_zero.contains(r, k);
                             if cancelled {
                                 rows[r].entries.remove(q);
                                 default_zero.remove(r, k);
-                                if was {
+                                if was_counted {
                                     col_count[k] -= 1;
                                 }
                             } else {
                                 rows[r].entries[q].1 = v;
-                                if !was && !delta_default_zero {
+                                if !was_counted && !delta_default_zero {
                                     default_zero.remove(r, k);
                                     col_count[k] += 1;
                                 }

@@ -121,9 +121,8 @@ impl SlotTable<'_> {
     }
 }
 
-/// The name of the `order`-th derivative of the variable `name`: `der(der(x))`, as
-/// slots name them.
-pub(crate) fn derivative_name(name: &str, order: usize) -> String {
+/// The name of the `order`-th derivative of the variable `name`: `der(der(x))`.
+fn derivative_name(name: &str, order: usize) -> String {
     let mut out = String::with_capacity(name.len() + 5 * order);
     for _ in 0..order {
         out.push_str("der(");
