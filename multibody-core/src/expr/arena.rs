@@ -1,6 +1,7 @@
 //! The arena: node storage, hash-consing and simplification on construction.
 
 use std::hash::BuildHasher;
+use std::sync::Arc;
 
 use hashbrown::HashTable;
 
@@ -11,18 +12,34 @@ use super::{Cmp, Func1, Func2, Id, Node, Operands};
 /// Hash-consed expression storage. Every constructor simplifies: constants fold,
 /// neutral elements vanish, sums and products are flattened and ordered, and like terms
 /// and like factors are collected.
+///
+/// An arena can extend a shared, frozen one ([`Arena::extending`]): the base's nodes
+/// keep their ids and are read where they are, so a problem built on a compiled model
+/// (its initialization) adds its own nodes without copying the model's.
 #[derive(Debug)]
 pub struct Arena {
+    /// The frozen arena this one extends, whose nodes are the ids below `base_nodes`
+    /// and whose pools are the operand indices below `base_terms` and `base_factors`.
+    base: Option<Arc<Arena>>,
+    /// Number of nodes of `base` (0 without one).
+    base_nodes: usize,
+    /// Entries of the term pool of `base`.
+    base_terms: usize,
+    /// Entries of the factor pool of `base`.
+    base_factors: usize,
+    /// The nodes of this arena: node `base_nodes + k` is `nodes[k]`.
     nodes: Vec<Node>,
-    /// The terms of every sum node, each node's a contiguous range.
+    /// The terms of every sum node, each node's a contiguous range (offset by
+    /// `base_terms`).
     term_pool: Vec<(u64, Id)>,
-    /// The factors of every product node, each node's a contiguous range.
+    /// The factors of every product node, each node's a contiguous range (offset by
+    /// `base_factors`).
     factor_pool: Vec<(Id, i32)>,
     /// Node ids, placed by their newest operand ([`crate::hash::anchored_hash`]: work
     /// on one part of a large model finds its entries in cache; equal nodes have equal
     /// operands, so they still meet), each with its hash ([`TableEntry`]). Every node
     /// except the leaves with a direct index below is stored once, in `nodes`, and
-    /// found here.
+    /// found here (or in the base's table, for the base's nodes).
     table: HashTable<TableEntry>,
     /// Direct index of the leaves `Var(i)` and `der(Var(i))` (`u32::MAX` when absent):
     /// their only index (they never enter the table).
@@ -39,51 +56,83 @@ pub struct Arena {
     pub(super) subst_work: super::subst::SubstWork,
 }
 
-/// Hash of a node by content (the operands of sums and products, not their ranges).
-fn hash_node(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> u64 {
+/// Hash of a node of `arena` by content (the operands of sums and products, not their
+/// ranges).
+fn hash_node(n: &Node, arena: &Arena) -> u64 {
     let b = crate::hash::FastBuild::default();
     match *n {
-        Node::Sum(ts, c) => b.hash_one((0u8, &terms[ts.range()], c)),
-        Node::Prod(fs) => b.hash_one((1u8, &factors[fs.range()])),
+        Node::Sum(ts, c) => b.hash_one((0u8, arena.terms(ts), c)),
+        Node::Prod(fs) => b.hash_one((1u8, arena.factors(fs))),
         _ => b.hash_one(n),
     }
 }
 
-/// A copy of `v`, with room for half as many entries again when `headroom` is set.
-fn copy_of<T: Copy>(v: &[T], headroom: bool) -> Vec<T> {
-    let extra = if headroom { v.len() / 2 + 16 } else { 0 };
-    let mut out = Vec::with_capacity(v.len() + extra);
-    out.extend_from_slice(v);
-    out
-}
-
 impl Clone for Arena {
+    /// A copy (work spaces start empty); a base is shared, not copied.
     fn clone(&self) -> Self {
-        self.copy(false)
-    }
-}
-
-impl Arena {
-    /// A copy with room for half as many nodes again, for a copy that is about to be
-    /// extended (the initialization adds its own equations to the model's arena): a
-    /// full vector would be copied a second time on its first growth.
-    pub fn clone_to_extend(&self) -> Arena {
-        self.copy(true)
-    }
-
-    /// A copy (work spaces start empty), with or without room to grow.
-    fn copy(&self, headroom: bool) -> Arena {
         Arena {
-            nodes: copy_of(&self.nodes, headroom),
-            term_pool: copy_of(&self.term_pool, headroom),
-            factor_pool: copy_of(&self.factor_pool, headroom),
+            base: self.base.clone(),
+            base_nodes: self.base_nodes,
+            base_terms: self.base_terms,
+            base_factors: self.base_factors,
+            nodes: self.nodes.clone(),
+            term_pool: self.term_pool.clone(),
+            factor_pool: self.factor_pool.clone(),
             table: self.table.clone(),
             var_leaf: self.var_leaf.clone(),
-            param_leaf: copy_of(&self.param_leaf, headroom),
+            param_leaf: self.param_leaf.clone(),
             combine_terms: Vec::new(),
             combine_merged: Vec::new(),
             subst_work: Default::default(),
         }
+    }
+}
+
+impl Arena {
+    /// An empty arena on top of `base`: every node of `base` is a node of the new
+    /// arena with the same id, read in `base` (not copied), and new nodes are added
+    /// after them. Building it costs only the direct indexes of the leaves. Bases are
+    /// never chained: when `base` extends an arena itself, a standalone copy of it
+    /// (the same nodes under the same ids) becomes the base.
+    pub fn extending(base: Arc<Arena>) -> Arena {
+        let base = match &base.base {
+            None => base,
+            Some(_) => Arc::new(base.as_ref().clone().into_standalone()),
+        };
+        Arena {
+            base_nodes: base.len(),
+            base_terms: base.term_pool.len(),
+            base_factors: base.factor_pool.len(),
+            nodes: Vec::new(),
+            term_pool: Vec::new(),
+            factor_pool: Vec::new(),
+            table: HashTable::new(),
+            var_leaf: base.var_leaf.clone(),
+            param_leaf: base.param_leaf.clone(),
+            combine_terms: Vec::new(),
+            combine_merged: Vec::new(),
+            subst_work: Default::default(),
+            base: Some(base),
+        }
+    }
+
+    /// This arena with its base's storage copied in: the same nodes under the same
+    /// ids, and no base.
+    fn into_standalone(self) -> Arena {
+        let Some(base) = &self.base else {
+            return self;
+        };
+        // A base extends no other arena, so its copy has none either.
+        let mut out = base.as_ref().clone();
+        out.nodes.extend_from_slice(&self.nodes);
+        out.term_pool.extend_from_slice(&self.term_pool);
+        out.factor_pool.extend_from_slice(&self.factor_pool);
+        for e in &self.table {
+            out.table.insert_unique(e.hash(), *e, TableEntry::hash);
+        }
+        out.var_leaf = self.var_leaf;
+        out.param_leaf = self.param_leaf;
+        out
     }
 }
 
@@ -111,15 +160,16 @@ impl TableEntry {
     }
 }
 
-/// The operand with the largest id (the newest), for a node that has operands.
-fn newest_operand(n: &Node, terms: &[(u64, Id)], factors: &[(Id, i32)]) -> Option<u32> {
+/// The operand with the largest id (the newest), for a node of `arena` that has
+/// operands.
+fn newest_operand(n: &Node, arena: &Arena) -> Option<u32> {
     let id = match *n {
         Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time => return None,
         Node::Der(a) | Node::F1(_, a) => a,
         Node::Pow(a, b) | Node::F2(_, a, b) | Node::Cmp(_, a, b) => a.max(b),
         Node::If(c, a, b) => c.max(a).max(b),
-        Node::Sum(ts, _) => terms[ts.range()].iter().map(|&(_, t)| t).max()?,
-        Node::Prod(fs) => factors[fs.range()].iter().map(|&(b, _)| b).max()?,
+        Node::Sum(ts, _) => arena.terms(ts).iter().map(|&(_, t)| t).max()?,
+        Node::Prod(fs) => arena.factors(fs).iter().map(|&(b, _)| b).max()?,
     };
     Some(id.0)
 }
@@ -133,9 +183,10 @@ fn grow_to<T: Copy>(v: &mut Vec<T>, i: u32, empty: T) -> &mut T {
     &mut v[i]
 }
 
-/// Appends `items` to `pool`: the operands of a new sum or product.
-fn append<T: Copy>(pool: &mut Vec<T>, items: &[T]) -> Operands {
-    let start = pool.len();
+/// Appends `items` to `pool`, whose first entry is operand `offset`: the operands of a
+/// new sum or product.
+fn append<T: Copy>(pool: &mut Vec<T>, offset: usize, items: &[T]) -> Operands {
+    let start = offset + pool.len();
     pool.extend_from_slice(items);
     Operands::new(start, items.len())
 }
@@ -153,6 +204,10 @@ impl Arena {
     /// An empty arena.
     pub fn new() -> Self {
         let mut a = Arena {
+            base: None,
+            base_nodes: 0,
+            base_terms: 0,
+            base_factors: 0,
             nodes: Vec::new(),
             term_pool: Vec::new(),
             factor_pool: Vec::new(),
@@ -168,19 +223,63 @@ impl Arena {
         a
     }
 
+    /// Room for `variables` variable leaves, `parameters` parameter leaves and
+    /// `expressions` other nodes, so that building a large model does not copy and
+    /// rehash its growing storage again and again (an estimate: more are added as
+    /// needed; an unused vector capacity costs address space only).
+    pub fn reserve(&mut self, variables: usize, parameters: usize, expressions: usize) {
+        self.nodes.reserve(variables + parameters + expressions);
+        self.term_pool.reserve(expressions);
+        self.factor_pool.reserve(expressions / 2);
+        self.table.reserve(expressions, TableEntry::hash);
+        if self.var_leaf.len() < variables {
+            self.var_leaf.resize(variables, [u32::MAX; 2]);
+        }
+        if self.param_leaf.len() < parameters {
+            self.param_leaf.resize(parameters, u32::MAX);
+        }
+    }
+
     /// The node behind `id`.
+    #[inline]
     pub fn node(&self, id: Id) -> &Node {
-        &self.nodes[id.index()]
+        let i = id.index();
+        if i >= self.base_nodes {
+            return &self.nodes[i - self.base_nodes];
+        }
+        &self.base().nodes[i]
     }
 
     /// The terms `(coefficient bits, term)` of a sum node.
+    #[inline]
     pub fn terms(&self, ts: Operands) -> &[(u64, Id)] {
-        &self.term_pool[ts.range()]
+        let start = ts.start();
+        if start >= self.base_terms {
+            let k = start - self.base_terms;
+            return &self.term_pool[k..k + ts.len()];
+        }
+        &self.base().term_pool[start..start + ts.len()]
     }
 
     /// The factors `(base, exponent)` of a product node.
+    #[inline]
     pub fn factors(&self, fs: Operands) -> &[(Id, i32)] {
-        &self.factor_pool[fs.range()]
+        let start = fs.start();
+        if start >= self.base_factors {
+            let k = start - self.base_factors;
+            return &self.factor_pool[k..k + fs.len()];
+        }
+        &self.base().factor_pool[start..start + fs.len()]
+    }
+
+    /// The arena this one extends (only asked for ids and operands below its sizes,
+    /// which exist only when there is one; it extends no other).
+    #[inline]
+    fn base(&self) -> &Arena {
+        match &self.base {
+            Some(base) => base,
+            None => unreachable!("only an extending arena has ids below its own"),
+        }
     }
 
     /// Entries of the term and factor pools (tests check that equal nodes share them).
@@ -189,14 +288,14 @@ impl Arena {
         (self.term_pool.len(), self.factor_pool.len())
     }
 
-    /// Number of distinct nodes.
+    /// Number of distinct nodes (a base's included).
     pub fn len(&self) -> usize {
-        self.nodes.len()
+        self.base_nodes + self.nodes.len()
     }
 
     /// Whether the arena holds no node (never true: 0 and 1 always exist).
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.len() == 0
     }
 
     fn intern(&mut self, n: Node) -> Id {
@@ -204,7 +303,7 @@ impl Arena {
             Node::Var(i) => return self.var(i),
             Node::Param(i) => return self.param(i),
             Node::Der(x) => {
-                if let Node::Var(i) = self.nodes[x.index()] {
+                if let Node::Var(i) = *self.node(x) {
                     return self.der_var(i, x);
                 }
             }
@@ -230,13 +329,13 @@ impl Arena {
 
     /// A sum node with these terms (already sorted and merged).
     fn intern_sum(&mut self, terms: &[(u64, Id)], c: u64) -> Id {
-        let ts = append(&mut self.term_pool, terms);
+        let ts = append(&mut self.term_pool, self.base_terms, terms);
         self.intern_hashed(Node::Sum(ts, c))
     }
 
     /// A product node with these factors (already sorted and merged).
     fn intern_product(&mut self, factors: &[(Id, i32)]) -> Id {
-        let fs = append(&mut self.factor_pool, factors);
+        let fs = append(&mut self.factor_pool, self.base_factors, factors);
         self.intern_hashed(Node::Prod(fs))
     }
 
@@ -247,29 +346,30 @@ impl Arena {
     fn intern_hashed(&mut self, n: Node) -> Id {
         debug_assert!(
             !matches!(n, Node::Var(_) | Node::Param(_))
-                && !matches!(n, Node::Der(x) if matches!(self.nodes[x.index()], Node::Var(_))),
+                && !matches!(n, Node::Der(x) if matches!(self.node(x), Node::Var(_))),
             "leaves with a direct index never enter the table"
         );
-        let (terms, factors) = (&self.term_pool[..], &self.factor_pool[..]);
-        let high = (hash_node(&n, terms, factors) >> 32) as u32;
-        let h = anchored_hash(newest_operand(&n, terms, factors), high);
-        let nodes = &self.nodes;
+        let high = (hash_node(&n, self) >> 32) as u32;
+        let newest = newest_operand(&n, self);
+        let h = anchored_hash(newest, high);
         // Equal by content: the operands of a stored sum or product are compared, not
         // its range in the pool.
         let same = |e: &TableEntry| {
             e.high == high
-                && match (nodes[e.id as usize], n) {
+                && match (*self.node(Id(e.id)), n) {
                     (Node::Sum(a, ca), Node::Sum(b, cb)) => {
-                        ca == cb && terms[a.range()] == terms[b.range()]
+                        ca == cb && self.terms(a) == self.terms(b)
                     }
-                    (Node::Prod(a), Node::Prod(b)) => factors[a.range()] == factors[b.range()],
+                    (Node::Prod(a), Node::Prod(b)) => self.factors(a) == self.factors(b),
                     (stored, n) => stored == n,
                 }
         };
-        if let Some(&TableEntry { id, .. }) = self.table.find(h, same) {
+        // A node with an operand newer than the base cannot be in the base.
+        let maybe_in_base = newest.is_none_or(|k| (k as usize) < self.base_nodes);
+        if let Some(id) = self.find(h, maybe_in_base, same) {
             match n {
-                Node::Sum(ts, _) => self.term_pool.truncate(ts.start()),
-                Node::Prod(fs) => self.factor_pool.truncate(fs.start()),
+                Node::Sum(ts, _) => self.term_pool.truncate(ts.start() - self.base_terms),
+                Node::Prod(fs) => self.factor_pool.truncate(fs.start() - self.base_factors),
                 _ => {}
             }
             return Id(id);
@@ -284,10 +384,23 @@ impl Arena {
         id
     }
 
+    /// The id of the node in this arena's table (or its base's, when `in_base` says it
+    /// may be there) with hash `h` that `same` accepts.
+    fn find(&self, h: u64, in_base: bool, same: impl Fn(&TableEntry) -> bool) -> Option<u32> {
+        // A base extends no other arena: its own table holds all its nodes.
+        if in_base
+            && let Some(base) = &self.base
+            && let Some(e) = base.table.find(h, &same)
+        {
+            return Some(e.id);
+        }
+        self.table.find(h, same).map(|e| e.id)
+    }
+
     /// Stores `n` as a new node, without entering it in the table (the caller does
     /// that, or records a leaf in its direct index).
     fn push_node(&mut self, n: Node) -> Id {
-        let id = self.nodes.len() as u32;
+        let id = self.len() as u32;
         self.nodes.push(n);
         Id(id)
     }

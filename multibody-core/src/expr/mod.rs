@@ -202,8 +202,8 @@ impl Cmp {
 
 /// The operands of a sum or product node: a range of its arena's operand pool (read
 /// them with [`Arena::terms`] or [`Arena::factors`]). Nodes keep no heap memory of their
-/// own, so an arena is a few flat vectors: cloned by copying, hash-consed without
-/// chasing pointers.
+/// own, so an arena is a few flat vectors (on top of a shared base, if it extends one):
+/// cloned by copying, hash-consed without chasing pointers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Operands {
     start: u32,
@@ -230,10 +230,6 @@ impl Operands {
 
     fn start(self) -> usize {
         self.start as usize
-    }
-
-    fn range(self) -> std::ops::Range<usize> {
-        self.start as usize..(self.start + self.len) as usize
     }
 }
 

@@ -184,3 +184,57 @@ fn solving_for_a_direct_term_equals_the_general_path() {
     }
     assert!(a.solve_linear(cases[5], x).is_none());
 }
+
+#[test]
+fn an_extending_arena_finds_its_base_nodes_and_adds_its_own_after_them() {
+    let mut base = Arena::new();
+    let (x, y) = (base.var(0), base.var(1));
+    let (dx, q) = (base.der(x), base.param(3));
+    let s = base.linear_combination(1.5, &[(2.0, x), (-1.0, y)]);
+    let p = base.product(&[x, y]);
+    let sin_s = base.f1(Func1::Sin, s);
+    let base_len = base.len();
+    let base = std::sync::Arc::new(base);
+    let mut a = Arena::extending(base.clone());
+    assert_eq!(a.len(), base_len);
+    // Rebuilt in any order, the base's nodes are found under their ids, nothing added.
+    assert_eq!(a.linear_combination(1.5, &[(-1.0, y), (2.0, x)]), s);
+    assert_eq!(a.product(&[y, x]), p);
+    assert_eq!(a.f1(Func1::Sin, s), sin_s);
+    assert_eq!((a.var(0), a.var(1), a.der(x), a.param(3)), (x, y, dx, q));
+    assert_eq!(a.len(), base_len);
+    // The operands of a candidate found in the base are given back.
+    assert_eq!(a.pool_lens(), (0, 0));
+    // New nodes come after the base's, and their operands read back from the pools.
+    let s2 = a.linear_combination(0.5, &[(1.0, p), (3.0, sin_s)]);
+    let p2 = a.product(&[s, s2]);
+    let z = a.var(2);
+    assert!(s2.index() >= base_len && p2.index() >= base_len && z.index() >= base_len);
+    let Node::Sum(ts, c) = *a.node(s2) else {
+        panic!("a sum")
+    };
+    assert_eq!(f64::from_bits(c), 0.5);
+    assert_eq!(a.terms(ts).len(), 2);
+    let Node::Prod(fs) = *a.node(p2) else {
+        panic!("a product")
+    };
+    assert_eq!(a.factors(fs), &[(s, 1), (s2, 1)]);
+    let Node::Sum(base_ts, _) = *a.node(s) else {
+        panic!("a sum")
+    };
+    assert_eq!(a.terms(base_ts), base.terms(base_ts));
+    // The base is untouched; rebuilding finds the new nodes again.
+    assert_eq!(base.len(), base_len);
+    let (len, pools) = (a.len(), a.pool_lens());
+    assert_eq!(a.linear_combination(0.5, &[(3.0, sin_s), (1.0, p)]), s2);
+    assert_eq!(a.product(&[s2, s]), p2);
+    assert_eq!((a.len(), a.pool_lens()), (len, pools));
+    // An arena extending an extending one keeps every id (its base is made standalone).
+    let mut b = Arena::extending(std::sync::Arc::new(a.clone()));
+    assert_eq!(b.len(), len);
+    assert_eq!(b.product(&[s2, s]), p2);
+    assert_eq!(b.linear_combination(1.5, &[(2.0, x), (-1.0, y)]), s);
+    assert_eq!(b.var(2), z);
+    assert_eq!(b.node(s2), a.node(s2));
+    assert_eq!(b.len(), len);
+}

@@ -243,15 +243,37 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         errors: Vec::new(),
         path_buffer: String::new(),
     };
-    // Pass 1: declarations.
+    // Pass 1: declarations, into vectors sized from the whole tree first (growing them
+    // by doubling copies a large model's declarations several times over).
     let mut stack = vec![sys];
     let mut order = Vec::new();
     while let Some(s) = stack.pop() {
         order.push(s);
-        f.declare(s);
         for sub in s.subsystems.iter().rev() {
             stack.push(sub);
         }
+    }
+    let count = |n: fn(&System) -> usize| order.iter().map(|&s| n(s)).sum::<usize>();
+    let n_variables = count(|s| s.variables.len());
+    f.flat.variables.reserve_exact(n_variables);
+    f.flat.starts.reserve_exact(n_variables);
+    let n_parameters = count(|s| s.parameters.len());
+    f.flat.parameters.reserve_exact(n_parameters);
+    f.flat.parameter_values.reserve_exact(n_parameters);
+    let n_equations = count(|s| s.equations.len());
+    // Connections add at most one equation per connector variable.
+    let n_connector_variables = count(|s| {
+        if s.connector_class.is_some() {
+            s.variables.len()
+        } else {
+            0
+        }
+    });
+    f.flat
+        .equations
+        .reserve(n_equations + n_connector_variables + graph.equations.len());
+    for &s in &order {
+        f.declare(s);
     }
     if let Some(e) = f.errors.first() {
         return Err(e.clone());

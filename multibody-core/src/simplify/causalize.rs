@@ -196,7 +196,8 @@ pub fn causalize(
     temps: &mut Temporaries<'_>,
 ) -> Result<Schedule, Singular> {
     let index = IdIndex::new(unknowns);
-    let mut g = BipartiteGraph::new(unknowns.len());
+    // Room for a few unknowns per equation.
+    let mut g = BipartiteGraph::with_capacity(unknowns.len(), equations.len(), 4 * equations.len());
     let (mut leaves, mut vars) = (Vec::new(), Vec::new());
     for &r in equations {
         arena.leaves_into(r, &mut leaves);

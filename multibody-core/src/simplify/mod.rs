@@ -367,7 +367,7 @@ pub fn structural_simplify_with(
         compiled,
         statistics,
         warnings,
-        arena,
+        arena: std::sync::Arc::new(arena),
     })
 }
 

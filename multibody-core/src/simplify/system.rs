@@ -173,7 +173,9 @@ pub struct SimplifiedSystem {
     /// Leaves that tearing never iterates on (orientation matrix entries), for the
     /// initialization system's tearing too.
     pub(crate) never_tear: crate::hash::HashSet<Id>,
-    pub(crate) arena: Arena,
+    /// The expressions, shared with the problems built on this system (their
+    /// initializations extend it without copying it).
+    pub(crate) arena: std::sync::Arc<Arena>,
     /// The flat variables (shared with the texts of the equations).
     pub(crate) variables: std::sync::Arc<Vec<Variable>>,
     pub(crate) parameters: Vec<Parameter>,

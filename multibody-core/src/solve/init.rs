@@ -86,25 +86,32 @@ pub(crate) struct InitResult {
 pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
     let sys = input.sys;
     let model = sys.name.clone();
-    let mut arena = sys.arena.clone_to_extend();
+    // The model's expressions are shared, not copied: the initialization's own nodes
+    // go on top of them.
+    let mut arena = crate::expr::Arena::extending(sys.arena.clone());
     let np = sys.parameters.len();
     let nv = sys.variables.len();
+    // Its equations (derivatives, start values, tearing) add about half as many nodes
+    // again, and a parameter per start value.
+    arena.reserve(0, np + nv, sys.arena.len() / 2);
     let start_leaf: Vec<Id> = (0..nv).map(|i| arena.param((np + i) as u32)).collect();
 
     // Unknowns: slots, then parameters computed at initialization.
-    let mut unknowns: Vec<Id> = sys.slots.iter().map(|s| s.leaf).collect();
     let free_params: Vec<usize> = (0..np).filter(|&j| !sys.parameters[j].fixed).collect();
+    let mut unknowns: Vec<Id> = Vec::with_capacity(sys.slots.len() + free_params.len());
+    unknowns.extend(sys.slots.iter().map(|s| s.leaf));
     for &j in &free_params {
         unknowns.push(arena.param(j as u32));
     }
     let index = IdIndex::new(&unknowns);
 
-    // Mandatory equations.
-    let mut eqs: Vec<(Id, InitText<'_>)> = sys
-        .equations
-        .iter()
-        .map(|e| (e.residual, InitText::Model(&e.text)))
-        .collect();
+    // Mandatory equations (as many as unknowns in the end, once completed).
+    let mut eqs: Vec<(Id, InitText<'_>)> = Vec::with_capacity(unknowns.len());
+    eqs.extend(
+        sys.equations
+            .iter()
+            .map(|e| (e.residual, InitText::Model(&e.text))),
+    );
     for (r, text) in &sys.initial_equations {
         for l in arena.leaves(*r) {
             if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains(l) {
@@ -139,7 +146,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     }
 
     // Structure: mandatory equations must be matchable.
-    let mut graph = BipartiteGraph::new(unknowns.len());
+    let mut graph = BipartiteGraph::with_capacity(unknowns.len(), unknowns.len(), 4 * eqs.len());
     let mut leaves = Vec::new();
     for (r, _) in &eqs {
         arena.leaves_into(*r, &mut leaves);

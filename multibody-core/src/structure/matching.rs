@@ -51,7 +51,7 @@ fn candidate_lists(
             .and_then(|p| p.get(v).copied())
             .unwrap_or(0.0)
     };
-    let mut out = Rows::new();
+    let mut out = Rows::with_capacity(g.eq_vars.len(), g.eq_vars.n_items());
     let mut c: Vec<usize> = Vec::new();
     for vars in g.eq_vars.iter() {
         c.clear();

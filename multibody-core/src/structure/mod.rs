@@ -40,6 +40,16 @@ impl BipartiteGraph {
         }
     }
 
+    /// An empty graph with `n_vars` variables and room for `n_eqs` equations of
+    /// `n_items` incidences in all (a large model's graph is then not copied as it
+    /// grows).
+    pub fn with_capacity(n_vars: usize, n_eqs: usize, n_items: usize) -> Self {
+        Self {
+            n_vars,
+            eq_vars: Rows::with_capacity(n_eqs, n_items),
+        }
+    }
+
     /// Adds an equation containing `vars` (sorted and deduplicated here) and
     /// returns its index. Variables `>= n_vars` grow `n_vars` accordingly.
     pub fn add_equation(&mut self, mut vars: Vec<usize>) -> usize {

@@ -27,6 +27,21 @@ impl Rows {
         }
     }
 
+    /// No rows, with room for `rows` rows of `items` entries in all.
+    pub fn with_capacity(rows: usize, items: usize) -> Self {
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        Rows {
+            offsets,
+            items: Vec::with_capacity(items),
+        }
+    }
+
+    /// Total number of entries of all rows.
+    pub fn n_items(&self) -> usize {
+        self.items.len()
+    }
+
     /// Appends a row.
     pub fn push(&mut self, row: &[usize]) {
         self.items.extend_from_slice(row);
