@@ -223,18 +223,15 @@ impl Arena {
         a
     }
 
-    /// Room for `variables` variable leaves, `parameters` parameter leaves and
-    /// `expressions` other nodes, so that building a large model does not copy and
-    /// rehash its growing storage again and again (an estimate: more are added as
-    /// needed; an unused vector capacity costs address space only).
-    pub fn reserve(&mut self, variables: usize, parameters: usize, expressions: usize) {
-        self.nodes.reserve(variables + parameters + expressions);
+    /// Room for parameter leaves up to `parameters` and for `expressions` more nodes,
+    /// so that adding many does not copy and rehash the growing storage again and
+    /// again (an estimate: more are added as needed; an unused vector capacity costs
+    /// address space only).
+    pub fn reserve(&mut self, parameters: usize, expressions: usize) {
+        self.nodes.reserve(expressions);
         self.term_pool.reserve(expressions);
         self.factor_pool.reserve(expressions / 2);
         self.table.reserve(expressions, TableEntry::hash);
-        if self.var_leaf.len() < variables {
-            self.var_leaf.resize(variables, [u32::MAX; 2]);
-        }
         if self.param_leaf.len() < parameters {
             self.param_leaf.resize(parameters, u32::MAX);
         }
@@ -253,23 +250,30 @@ impl Arena {
     /// The terms `(coefficient bits, term)` of a sum node.
     #[inline]
     pub fn terms(&self, ts: Operands) -> &[(u64, Id)] {
-        let start = ts.start();
-        if start >= self.base_terms {
-            let k = start - self.base_terms;
-            return &self.term_pool[k..k + ts.len()];
-        }
-        &self.base().term_pool[start..start + ts.len()]
+        self.operands(ts, &self.term_pool, self.base_terms, |b| &b.term_pool)
     }
 
     /// The factors `(base, exponent)` of a product node.
     #[inline]
     pub fn factors(&self, fs: Operands) -> &[(Id, i32)] {
-        let start = fs.start();
-        if start >= self.base_factors {
-            let k = start - self.base_factors;
-            return &self.factor_pool[k..k + fs.len()];
+        self.operands(fs, &self.factor_pool, self.base_factors, |b| &b.factor_pool)
+    }
+
+    /// The range `ops` of a pool whose entries below `offset` are the base's
+    /// (`base_pool`) and the others `own[k - offset]`.
+    #[inline]
+    fn operands<'a, T>(
+        &'a self,
+        ops: Operands,
+        own: &'a [T],
+        offset: usize,
+        base_pool: impl FnOnce(&'a Arena) -> &'a [T],
+    ) -> &'a [T] {
+        let start = ops.start();
+        match start.checked_sub(offset) {
+            Some(k) => &own[k..k + ops.len()],
+            None => &base_pool(self.base())[start..start + ops.len()],
         }
-        &self.base().factor_pool[start..start + fs.len()]
     }
 
     /// The arena this one extends (only asked for ids and operands below its sizes,

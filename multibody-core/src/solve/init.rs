@@ -93,7 +93,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     let nv = sys.variables.len();
     // Its equations (derivatives, start values, tearing) add about half as many nodes
     // again, and a parameter per start value.
-    arena.reserve(0, np + nv, sys.arena.len() / 2);
+    arena.reserve(np + nv, sys.arena.len() / 2);
     let start_leaf: Vec<Id> = (0..nv).map(|i| arena.param((np + i) as u32)).collect();
 
     // Unknowns: slots, then parameters computed at initialization.

@@ -34,10 +34,7 @@ pub struct BipartiteGraph {
 impl BipartiteGraph {
     /// An empty graph with `n_vars` variables and no equations.
     pub fn new(n_vars: usize) -> Self {
-        Self {
-            n_vars,
-            eq_vars: Rows::new(),
-        }
+        Self::with_capacity(n_vars, 0, 0)
     }
 
     /// An empty graph with `n_vars` variables and room for `n_eqs` equations of

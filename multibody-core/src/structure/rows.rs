@@ -21,10 +21,7 @@ impl Default for Rows {
 impl Rows {
     /// No rows.
     pub fn new() -> Self {
-        Rows {
-            offsets: vec![0],
-            items: Vec::new(),
-        }
+        Rows::with_capacity(0, 0)
     }
 
     /// No rows, with room for `rows` rows of `items` entries in all.
