@@ -31,7 +31,7 @@ fn time_per_call(reps: usize, mut f: impl FnMut()) -> f64 {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    for n in [10usize, 100, 1000] {
+    for n in [10usize, 100, 1000, 10000] {
         let ssys = structural_simplify(&chain(n))?;
         let tape = &ssys.compiled().residual;
         let mut ws = tape.workspace();

@@ -11,8 +11,9 @@
 //! parameters (the default), and `evaluated_compile_s`, `evaluated_solve_s`,
 //! `evaluated_steps` and `evaluated_solve_ratio` for the same model compiled with
 //! every parameter folded in as a constant (`SimplifyOptions::evaluate_parameters`),
-//! as the hand-written residual has them (compile phases and
-//! initialization the fastest of 5 repetitions; solves, ours and the baseline's,
+//! as the hand-written residual has them (compile phases and initialization the
+//! fastest of 5 rounds, each compiling every size and both variants in turn, so that a
+//! slow spell of the machine hits every size alike; solves, ours and the baseline's,
 //! the fastest of 3 interleaved repetitions up to N = 100, `BENCH_REPS=k` to change
 //! that), then the growth of the compile time between the two largest sizes next to
 //! that of `N log N`.
@@ -198,52 +199,70 @@ fn main() -> Result<(), multibody::Error> {
             args
         }
     };
+    let mut linear_blocks = multibody::LinearBlockLimits::default();
+    if let Some(k) = std::env::var("BENCH_MAX_TEARING")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        linear_blocks.max_inline_tearing = k;
+    }
+    if let Ok(v) = std::env::var("BENCH_PRE_FILL") {
+        linear_blocks.pre_elimination_fill = v.parse().ok();
+    }
+    if std::env::var("BENCH_DAE_FORM").is_ok() {
+        linear_blocks.sparse_inline = false;
+    }
+    let options = SimplifyOptions {
+        linear_blocks,
+        ..SimplifyOptions::default()
+    };
+    // Parameters tunable (the default), then every parameter folded in as a constant,
+    // as the hand-written residual has them.
+    let variants = [
+        options.clone(),
+        SimplifyOptions {
+            evaluate_parameters: true,
+            ..options
+        },
+    ];
+    let opts = SolverOptions {
+        rtol: RTOL,
+        atol: ATOL,
+        linear_solver: match std::env::var("BENCH_LINEAR_SOLVER").as_deref() {
+            Ok("dense") => LinearSolverChoice::Dense,
+            Ok("sparse") => LinearSolverChoice::Sparse,
+            Ok("plain") => LinearSolverChoice::SparsePlain,
+            Ok("dq") => LinearSolverChoice::DenseDifferenceQuotient,
+            _ => LinearSolverChoice::Auto,
+        },
+        ..SolverOptions::default()
+    };
+    // Compile phases and initialization: the fastest of several rounds, the sizes and
+    // both variants interleaved within each round so that a slow spell of this noisy
+    // machine hits every size alike (and the first round's page faults count for none).
+    let models: Vec<System> = sizes.iter().map(|&n| chain(n)).collect();
+    let mut compiled: Vec<[Option<Compiled>; 2]> = sizes.iter().map(|_| [None, None]).collect();
+    for _round in 0..COMPILE_ROUNDS {
+        for (model, best) in models.iter().zip(&mut compiled) {
+            for (variant, best) in variants.iter().zip(best.iter_mut()) {
+                let c = compile(model, variant)?;
+                *best = Some(match best.take() {
+                    None => c,
+                    Some(b) => b.fastest_with(c),
+                });
+            }
+        }
+    }
+    drop(models);
     let mut compile_rows: Vec<(usize, f64)> = Vec::new();
-    for n in sizes {
-        let model = chain(n);
-        let mut linear_blocks = multibody::LinearBlockLimits::default();
-        if let Some(k) = std::env::var("BENCH_MAX_TEARING")
-            .ok()
-            .and_then(|v| v.parse().ok())
-        {
-            linear_blocks.max_inline_tearing = k;
-        }
-        if let Ok(v) = std::env::var("BENCH_PRE_FILL") {
-            linear_blocks.pre_elimination_fill = v.parse().ok();
-        }
-        if std::env::var("BENCH_DAE_FORM").is_ok() {
-            linear_blocks.sparse_inline = false;
-        }
-        let options = SimplifyOptions {
-            linear_blocks,
-            ..SimplifyOptions::default()
+    for (&n, [tunable, evaluated]) in sizes.iter().zip(compiled) {
+        let (Some(tunable), Some(evaluated)) = (tunable, evaluated) else {
+            unreachable!("every round compiles every size and variant");
         };
-        let opts = SolverOptions {
-            rtol: RTOL,
-            atol: ATOL,
-            linear_solver: match std::env::var("BENCH_LINEAR_SOLVER").as_deref() {
-                Ok("dense") => LinearSolverChoice::Dense,
-                Ok("sparse") => LinearSolverChoice::Sparse,
-                Ok("plain") => LinearSolverChoice::SparsePlain,
-                Ok("dq") => LinearSolverChoice::DenseDifferenceQuotient,
-                _ => LinearSolverChoice::Auto,
-            },
-            ..SolverOptions::default()
-        };
-        // Parameters tunable (the default), then every parameter folded in as a
-        // constant, as the hand-written residual has them.
-        let Some(mut tunable) = run(&model, &options, &opts)? else {
+        let Some(mut tunable) = run(tunable, &opts)? else {
             continue;
         };
-        let mut evaluated = run(
-            &model,
-            &SimplifyOptions {
-                evaluate_parameters: true,
-                ..options
-            },
-            &opts,
-        )?
-        .expect("not only evaluating");
+        let mut evaluated = run(evaluated, &opts)?.expect("not only evaluating");
         compile_rows.push((n, tunable.compile_s));
         let with_baseline = n <= 100 && std::env::var("BENCH_ONLY_OURS").is_err();
         let mut base: Option<(f64, u64, f64)> = None;
@@ -324,38 +343,55 @@ struct Run {
     q1: f64,
 }
 
-/// Repetitions of each compilation (and initialization); the fastest counts.
-const COMPILE_REPS: usize = 5;
+/// Rounds of compilation (and initialization) of every size; the fastest counts.
+const COMPILE_ROUNDS: usize = 5;
 
-/// Compiles `model` (the fastest of [`COMPILE_REPS`] repetitions for each phase and
-/// for the initialization) and solves it; `None` when `BENCH_EVAL_ONLY` stops after the
-/// diagnostics.
-fn run(
-    model: &System,
-    options: &SimplifyOptions,
-    opts: &SolverOptions,
-) -> Result<Option<Run>, multibody::Error> {
-    let mut best: Option<(SimplifiedSystem, multibody::simplify::PhaseTimes, f64)> = None;
-    for _ in 0..COMPILE_REPS {
-        let ssys = structural_simplify_with(model, options)?;
-        let t = ssys.statistics().times;
-        let t0 = Instant::now();
-        drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
-        let init = t0.elapsed().as_secs_f64();
-        best = Some(match best {
-            None => (ssys, t, init),
-            Some((s, b, i)) => (
-                s,
-                multibody::simplify::PhaseTimes {
-                    flatten_s: b.flatten_s.min(t.flatten_s),
-                    simplify_s: b.simplify_s.min(t.simplify_s),
-                    codegen_s: b.codegen_s.min(t.codegen_s),
-                },
-                i.min(init),
-            ),
-        });
+/// One compilation of a variant: the compiled model and the times of its phases and of
+/// its initialization (the fastest over rounds once merged).
+struct Compiled {
+    ssys: SimplifiedSystem,
+    times: multibody::simplify::PhaseTimes,
+    init_s: f64,
+}
+
+impl Compiled {
+    /// This compilation with each time the smaller of its own and `other`'s.
+    fn fastest_with(self, other: Compiled) -> Compiled {
+        let (b, t) = (self.times, other.times);
+        Compiled {
+            ssys: self.ssys,
+            times: multibody::simplify::PhaseTimes {
+                flatten_s: b.flatten_s.min(t.flatten_s),
+                simplify_s: b.simplify_s.min(t.simplify_s),
+                codegen_s: b.codegen_s.min(t.codegen_s),
+            },
+            init_s: self.init_s.min(other.init_s),
+        }
     }
-    let (ssys, times, init_s) = best.expect("at least one repetition");
+}
+
+/// Compiles `model` once and times its initialization.
+fn compile(model: &System, options: &SimplifyOptions) -> Result<Compiled, multibody::Error> {
+    let ssys = structural_simplify_with(model, options)?;
+    let times = ssys.statistics().times;
+    let t0 = Instant::now();
+    drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
+    let init_s = t0.elapsed().as_secs_f64();
+    Ok(Compiled {
+        ssys,
+        times,
+        init_s,
+    })
+}
+
+/// Solves a compiled variant; `None` when `BENCH_EVAL_ONLY` stops after the
+/// diagnostics.
+fn run(compiled: Compiled, opts: &SolverOptions) -> Result<Option<Run>, multibody::Error> {
+    let Compiled {
+        ssys,
+        times,
+        init_s,
+    } = compiled;
     if std::env::var("BENCH_STATS").is_ok() {
         diagnostics(&ssys);
         if std::env::var("BENCH_EVAL_ONLY").is_ok() {

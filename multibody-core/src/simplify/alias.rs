@@ -290,9 +290,13 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     let mut has_rule = vec![false; nv];
     let rules = flat.derivative_rules.clone();
     let mut in_rules = vec![false; nv];
+    let mut leaves = Vec::new();
     for (x, expr) in rules {
-        let e = flat.arena.substitute(expr, &map);
-        for leaf in flat.arena.leaves(e) {
+        // The memo of the equations' pass: the same substitution, and the rules share
+        // their angular velocities with the equations and with each other.
+        let e = flat.arena.substitute_memo(expr, &dense_map, &mut memo);
+        flat.arena.leaves_into(e, &mut leaves);
+        for &leaf in &leaves {
             if let Node::Var(v) = flat.arena.node(leaf) {
                 in_rules[*v as usize] = true;
             }
