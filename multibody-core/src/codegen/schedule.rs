@@ -55,7 +55,8 @@ pub(crate) fn grouped_order(
     }
     let mut indegree = vec![0u32; n];
     let mut succ_ptr = vec![0u32; n + 1];
-    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    // Most instructions have one or two operands.
+    let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(2 * n);
     let mut preds: Vec<u32> = Vec::new();
     for (i, op) in ops.iter().enumerate() {
         if !live[i] || matches!(op, Op::LsPart) {

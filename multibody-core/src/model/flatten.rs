@@ -272,6 +272,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     f.flat
         .equations
         .reserve(n_equations + n_connector_variables + graph.equations.len());
+    // Growing the index of connectors by path would hash every path again at each
+    // doubling, reading the model's strings once more.
+    let n_connectors = count(|s| usize::from(s.connector_class.is_some()));
+    f.connectors.reserve_exact(n_connectors);
+    f.connector_of_path.reserve(n_connectors);
     for &s in &order {
         f.declare(s);
     }

@@ -23,8 +23,9 @@ pub(crate) struct Aliases {
     pub derivative: Vec<Option<u32>>,
     /// Indices of the flat equations removed (alias and derivative-alias equations).
     pub removed: Vec<bool>,
-    /// The substitution of eliminated variables applied to every expression.
-    pub map: HashMap<Id, Id>,
+    /// The substitution of eliminated variables applied to every expression (leaf ->
+    /// replacement, dense by the leaf's id).
+    pub map: NodeMap,
     /// `der(x) -> v` for the derivative aliases: applied after every time
     /// differentiation so derivatives land on existing variables.
     pub derivative_map: HashMap<Id, Id>,
@@ -204,7 +205,6 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         fill[r as usize] += 1;
     }
     let mut replaced: Vec<Option<Id>> = vec![None; nv];
-    let mut map: HashMap<Id, Id> = HashMap::default();
     for root in 0..nv as u32 {
         let ms = &grouped[start[root as usize] as usize..start[root as usize + 1] as usize];
         if ms.is_empty() {
@@ -265,23 +265,19 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         flat.variables[rep as usize].state_priority = best_priority;
         flat.starts[rep as usize] = start;
     }
-    map.reserve(replaced.iter().filter(|r| r.is_some()).count());
-    // The same map, dense, for the pass over the whole model.
-    let mut dense_map = NodeMap::new();
+    // Dense by the leaf's id: the pass over the whole model reads it in model order.
+    let mut map = NodeMap::new();
     for (x, r) in replaced.iter().enumerate() {
         if let Some(r) = *r {
             let leaf = flat.arena.var(x as u32);
             map.insert(leaf, r);
-            dense_map.insert(leaf, r);
         }
     }
     // Apply the substitution to the remaining equations.
     let mut memo = NodeMap::new();
     for (e, eq) in flat.equations.iter_mut().enumerate() {
         if !removed[e] {
-            eq.residual = flat
-                .arena
-                .substitute_memo(eq.residual, &dense_map, &mut memo);
+            eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
         }
     }
     // Derivative rules (der(x) is an expression, as for an orientation matrix): moved
@@ -294,7 +290,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     for (x, expr) in rules {
         // The memo of the equations' pass: the same substitution, and the rules share
         // their angular velocities with the equations and with each other.
-        let e = flat.arena.substitute_memo(expr, &dense_map, &mut memo);
+        let e = flat.arena.substitute_memo(expr, &map, &mut memo);
         flat.arena.leaves_into(e, &mut leaves);
         for &leaf in &leaves {
             if let Node::Var(v) = flat.arena.node(leaf) {

@@ -218,7 +218,12 @@ pub fn causalize(
             under_unknowns: dm.under_vars.iter().map(|&v| unknowns[v]).collect(),
         });
     }
-    let mut out = Schedule::default();
+    // Mostly one step per equation (a scalar block each); sized once, as the steps of a
+    // large model otherwise grow by copying through several doublings.
+    let mut out = Schedule {
+        steps: Vec::with_capacity(equations.len()),
+        ..Schedule::default()
+    };
     for block in blt_flat(&g, &m).iter() {
         let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {

@@ -116,18 +116,22 @@ pub fn structural_simplify_with(
                 .is_some_and(|v| has_rule[v as usize])
         })
         .collect();
-    // Initial equations and start values under the same substitutions.
-    let mut full_map = aliases.map.clone();
-    full_map.extend(aliases.derivative_map.iter().map(|(&k, &v)| (k, v)));
-    let initial_equations: Vec<(Id, String)> = flat
-        .initial_equations
-        .clone()
-        .iter()
-        .map(|eq| {
-            let r = flat.arena.substitute(eq.residual, &full_map);
-            (r, flat.describe(eq))
-        })
-        .collect();
+    // Initial equations under the same substitutions (the combined map is built only
+    // for a model that has some: it copies every alias).
+    let mut initial_equations: Vec<(Id, String)> = Vec::new();
+    if !flat.initial_equations.is_empty() {
+        let mut full_map = aliases.map.clone();
+        for (&k, &v) in &aliases.derivative_map {
+            full_map.insert(k, v);
+        }
+        let mut memo: HashMap<Id, Id> = HashMap::default();
+        for eq in flat.initial_equations.clone() {
+            let r = flat
+                .arena
+                .substitute_memo(eq.residual, &full_map, &mut memo);
+            initial_equations.push((r, flat.describe(&eq)));
+        }
+    }
     // The variables and the equations' origins move into storage shared by the texts of
     // all equations (no copy of an origin or a name per equation).
     let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
