@@ -244,37 +244,35 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         path_buffer: String::new(),
     };
     // Pass 1: declarations, into vectors sized from the whole tree first (growing them
-    // by doubling copies a large model's declarations several times over).
+    // by doubling copies a large model's declarations several times over). The sizes
+    // are counted in the walk that orders the tree.
+    let (mut n_variables, mut n_parameters, mut n_equations) = (0, 0, 0);
+    // Connections add at most one equation per connector variable.
+    let (mut n_connectors, mut n_connector_variables) = (0, 0);
     let mut stack = vec![sys];
     let mut order = Vec::new();
     while let Some(s) = stack.pop() {
         order.push(s);
+        n_variables += s.variables.len();
+        n_parameters += s.parameters.len();
+        n_equations += s.equations.len();
+        if s.connector_class.is_some() {
+            n_connectors += 1;
+            n_connector_variables += s.variables.len();
+        }
         for sub in s.subsystems.iter().rev() {
             stack.push(sub);
         }
     }
-    let count = |n: fn(&System) -> usize| order.iter().map(|&s| n(s)).sum::<usize>();
-    let n_variables = count(|s| s.variables.len());
     f.flat.variables.reserve_exact(n_variables);
     f.flat.starts.reserve_exact(n_variables);
-    let n_parameters = count(|s| s.parameters.len());
     f.flat.parameters.reserve_exact(n_parameters);
     f.flat.parameter_values.reserve_exact(n_parameters);
-    let n_equations = count(|s| s.equations.len());
-    // Connections add at most one equation per connector variable.
-    let n_connector_variables = count(|s| {
-        if s.connector_class.is_some() {
-            s.variables.len()
-        } else {
-            0
-        }
-    });
     f.flat
         .equations
         .reserve(n_equations + n_connector_variables + graph.equations.len());
     // Growing the index of connectors by path would hash every path again at each
     // doubling, reading the model's strings once more.
-    let n_connectors = count(|s| usize::from(s.connector_class.is_some()));
     f.connectors.reserve_exact(n_connectors);
     f.connector_of_path.reserve(n_connectors);
     for &s in &order {

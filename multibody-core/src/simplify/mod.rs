@@ -125,11 +125,11 @@ pub fn structural_simplify_with(
             full_map.insert(k, v);
         }
         let mut memo: HashMap<Id, Id> = HashMap::default();
-        for eq in flat.initial_equations.clone() {
+        for eq in &flat.initial_equations {
             let r = flat
                 .arena
                 .substitute_memo(eq.residual, &full_map, &mut memo);
-            initial_equations.push((r, flat.describe(&eq)));
+            initial_equations.push((r, flat.describe(eq)));
         }
     }
     // The variables and the equations' origins move into storage shared by the texts of
