@@ -1,6 +1,8 @@
 //! Names: lookup by name, and suggestions for messages about unknown names.
 
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
+
+use crate::model::SharedText;
 
 use crate::hash::HashMap;
 
@@ -11,15 +13,15 @@ use crate::hash::HashMap;
 /// none of its names.
 #[derive(Default)]
 pub struct NameIndex {
-    names: OnceLock<Vec<Arc<str>>>,
+    names: OnceLock<Vec<SharedText>>,
     /// What makes `names` when it is first asked for (`None` when they were given).
     source: Option<NameSource>,
     /// The index of `names` (the first of equal names wins a lookup).
-    index: OnceLock<HashMap<Arc<str>, usize>>,
+    index: OnceLock<HashMap<SharedText, usize>>,
 }
 
 /// A function that lists names.
-type NameSource = Box<dyn Fn() -> Vec<Arc<str>> + Send + Sync>;
+type NameSource = Box<dyn Fn() -> Vec<SharedText> + Send + Sync>;
 
 impl std::fmt::Debug for NameIndex {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -31,7 +33,7 @@ impl std::fmt::Debug for NameIndex {
 
 impl NameIndex {
     /// An index of these names.
-    pub fn new(names: Vec<Arc<str>>) -> Self {
+    pub fn new(names: Vec<SharedText>) -> Self {
         NameIndex {
             names: OnceLock::from(names),
             source: None,
@@ -40,7 +42,7 @@ impl NameIndex {
     }
 
     /// An index whose names `source` lists when they are first asked for.
-    pub fn lazy(source: impl Fn() -> Vec<Arc<str>> + Send + Sync + 'static) -> Self {
+    pub fn lazy(source: impl Fn() -> Vec<SharedText> + Send + Sync + 'static) -> Self {
         NameIndex {
             names: OnceLock::new(),
             source: Some(Box::new(source)),
@@ -49,7 +51,7 @@ impl NameIndex {
     }
 
     /// The names, in order.
-    pub fn names(&self) -> &[Arc<str>] {
+    pub fn names(&self) -> &[SharedText] {
         self.names
             .get_or_init(|| self.source.as_ref().map(|f| f()).unwrap_or_default())
     }
@@ -150,9 +152,9 @@ mod tests {
 
     #[test]
     fn name_index_finds_positions_and_suggests() {
-        let names: Vec<Arc<str>> = ["j1.phi", "j1.w", "j2.s", "j1.phi"]
+        let names: Vec<SharedText> = ["j1.phi", "j1.w", "j2.s", "j1.phi"]
             .iter()
-            .map(|&s| Arc::from(s))
+            .map(|&s| SharedText::from(s))
             .collect();
         let index = NameIndex::new(names);
         assert_eq!(index.position("j2.s"), Some(2));
@@ -166,11 +168,11 @@ mod tests {
     #[test]
     fn a_lazy_index_lists_its_names_once_on_first_use() {
         use std::sync::atomic::{AtomicUsize, Ordering};
-        let calls = Arc::new(AtomicUsize::new(0));
+        let calls = std::sync::Arc::new(AtomicUsize::new(0));
         let counter = calls.clone();
         let index = NameIndex::lazy(move || {
             counter.fetch_add(1, Ordering::SeqCst);
-            vec![Arc::from("x"), Arc::from("der(x)")]
+            vec![SharedText::from("x"), SharedText::from("der(x)")]
         });
         assert_eq!(calls.load(Ordering::SeqCst), 0, "nothing listed before use");
         assert_eq!(index.position("der(x)"), Some(1));

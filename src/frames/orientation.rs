@@ -60,21 +60,20 @@ impl VariableType for Orientation {
         let mut t = [[c(0.0); 3]; 3];
         for (i, row) in t.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
-                let mut v = template.clone();
-                v.name = format!("{local}.T[{},{}]", i + 1, j + 1).into();
-                v.description = "transformation matrix from world frame to local frame".into();
-                v = v.start(if i == j { 1.0 } else { 0.0 });
-                *x = s.variable(v);
+                let v = template
+                    .clone()
+                    .description("transformation matrix from world frame to local frame")
+                    .start(if i == j { 1.0 } else { 0.0 });
+                *x = s.variable_at(&format!("{local}.T[{},{}]", i + 1, j + 1), v);
             }
         }
         let mut w = [c(0.0); 3];
         for (i, x) in w.iter_mut().enumerate() {
-            let mut v = template.clone();
-            v.name = format!("{local}.w[{}]", i + 1).into();
-            v.description =
-                "absolute angular velocity of local frame, resolved in local frame".into();
-            v.unit = "rad/s".into();
-            *x = s.variable(v);
+            let v = template
+                .clone()
+                .description("absolute angular velocity of local frame, resolved in local frame")
+                .unit("rad/s");
+            *x = s.variable_at(&format!("{local}.w[{}]", i + 1), v);
         }
         let (t, w) = (Mat3(t), Vec3(w));
         // der(T) = -skew(w) T: the entries of T never get derivative unknowns.
@@ -126,7 +125,7 @@ impl Equate<Orientation> for Orientation {
 
 /// Declares an orientation variable that is not a connector's (its kind is internal).
 pub fn declare_orientation(s: &mut System, name: &str) -> Orientation {
-    Orientation::declare(s, Variable::new(name).kind(VarKind::Internal))
+    Orientation::declare(s, Variable::new(name.to_string()).kind(VarKind::Internal))
 }
 
 /// The null rotation: `T = I`, `w = 0`.

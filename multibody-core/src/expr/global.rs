@@ -12,11 +12,10 @@ use super::{Arena, Cmp, Func1, Func2, Id, NameResolver, Node};
 /// The global arena and its symbol table.
 pub(crate) struct Global {
     pub(crate) arena: Arena,
-    /// Every symbol's name, one after the other (one buffer: no allocation per name,
-    /// and the names of one model lie in the order they were made).
-    text: String,
-    /// Where each symbol's name ends in `text`; it starts where the previous one ends.
-    ends: Vec<usize>,
+    /// Where the names are kept.
+    store: NameStore,
+    /// Each symbol's name, by id.
+    names: Vec<&'static str>,
     /// Symbol ids placed by the hash of their names, each with that hash (growing the
     /// table reads no name).
     table: HashTable<SymbolEntry>,
@@ -29,6 +28,34 @@ struct SymbolEntry {
     hash: u64,
 }
 
+/// Storage for symbol names that is never freed, so each name is a `&'static str`:
+/// a model's variables carry their names as such (copying one touches no memory).
+/// Names are written one after the other into large blocks (no allocation per name,
+/// and the names of one model lie in the order they were made). Symbols live as long
+/// as the process anyway: the global arena is append-only.
+struct NameStore {
+    /// The unused end of the current block.
+    rest: &'static mut [u8],
+}
+
+impl NameStore {
+    /// Bytes in a block (a longer name gets a block of its own length).
+    const BLOCK: usize = 64 * 1024;
+
+    /// A copy of `name` that lives as long as the process.
+    fn keep(&mut self, name: &str) -> &'static str {
+        let n = name.len();
+        if self.rest.len() < n {
+            self.rest = Box::leak(vec![0u8; n.max(Self::BLOCK)].into_boxed_slice());
+        }
+        let (head, tail) = std::mem::take(&mut self.rest).split_at_mut(n);
+        self.rest = tail;
+        head.copy_from_slice(name.as_bytes());
+        let head: &'static [u8] = head;
+        std::str::from_utf8(head).expect("a copy of a str")
+    }
+}
+
 /// The hash of a symbol name.
 fn name_hash(name: &str) -> u64 {
     crate::hash::FastBuild::default().hash_one(name)
@@ -39,8 +66,8 @@ impl Global {
     fn new() -> Self {
         Global {
             arena: Arena::new(),
-            text: String::new(),
-            ends: Vec::new(),
+            store: NameStore { rest: &mut [] },
+            names: Vec::new(),
             table: HashTable::new(),
         }
     }
@@ -51,9 +78,9 @@ impl Global {
         if let Some(i) = self.find(name, hash) {
             return i;
         }
-        let i = u32::try_from(self.ends.len()).expect("fewer than 2^32 symbols");
-        self.text.push_str(name);
-        self.ends.push(self.text.len());
+        let i = u32::try_from(self.names.len()).expect("fewer than 2^32 symbols");
+        let kept = self.store.keep(name);
+        self.names.push(kept);
         self.table
             .insert_unique(hash, SymbolEntry { id: i, hash }, |e| e.hash);
         i
@@ -72,15 +99,13 @@ impl Global {
     }
 
     /// The name of a symbol.
-    pub(crate) fn name(&self, sym: u32) -> &str {
-        let i = sym as usize;
-        let start = if i == 0 { 0 } else { self.ends[i - 1] };
-        &self.text[start..self.ends[i]]
+    pub(crate) fn name(&self, sym: u32) -> &'static str {
+        self.names[sym as usize]
     }
 
     /// Number of interned symbols.
     pub(crate) fn n_symbols(&self) -> usize {
-        self.ends.len()
+        self.names.len()
     }
 }
 
@@ -99,6 +124,19 @@ static GLOBAL: LazyLock<Mutex<Global>> = LazyLock::new(|| Mutex::new(Global::new
 /// stays consistent).
 pub(crate) fn global() -> MutexGuard<'static, Global> {
     GLOBAL.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The unknown (or, with `param`, the parameter) named `name`, its symbol, and its
+/// name as the symbol table keeps it (for the whole process: copying it is free).
+pub(crate) fn named_leaf(name: &str, param: bool) -> (Expr, u32, &'static str) {
+    let mut g = global();
+    let s = g.symbol(name);
+    let id = if param {
+        g.arena.param(s)
+    } else {
+        g.arena.var(s)
+    };
+    (Expr(id), s, g.name(s))
 }
 
 /// The name of a global symbol.
@@ -163,14 +201,6 @@ impl Expr {
         let g = global();
         match g.arena.node(self.0) {
             Node::Var(s) | Node::Param(s) => Some(g.name(*s).to_string()),
-            _ => None,
-        }
-    }
-
-    /// The symbol id when this is a variable or parameter leaf.
-    pub(crate) fn symbol(self) -> Option<u32> {
-        match with(|a| *a.node(self.0)) {
-            Node::Var(s) | Node::Param(s) => Some(s),
             _ => None,
         }
     }

@@ -313,9 +313,7 @@ impl VariableType for Vec3 {
     fn declare(s: &mut System, template: Variable) -> Self {
         let mut out = [Expr::constant(0.0); 3];
         for (i, o) in out.iter_mut().enumerate() {
-            let mut v = template.clone();
-            v.name = element_name(&template.name, i).into();
-            *o = s.variable(v);
+            *o = s.variable_at(&element_name(&template.name, i), template.clone());
         }
         Vec3(out)
     }
@@ -329,9 +327,8 @@ impl VariableType for Mat3 {
         let mut m = [[Expr::constant(0.0); 3]; 3];
         for i in 0..3 {
             for j in 0..3 {
-                let mut v = template.clone();
-                v.name = format!("{}[{},{}]", template.name, i + 1, j + 1).into();
-                m[i][j] = s.variable(v);
+                let local = format!("{}[{},{}]", template.name, i + 1, j + 1);
+                m[i][j] = s.variable_at(&local, template.clone());
             }
         }
         Mat3(m)
@@ -370,9 +367,8 @@ impl ParameterType for [f64; 3] {
         let mut out = [Expr::constant(0.0); 3];
         for (i, o) in out.iter_mut().enumerate() {
             let mut p = template.clone();
-            p.name = element_name(&template.name, i).into();
             p.value = Some(Expr::constant(self[i]));
-            *o = s.parameter(p);
+            *o = s.parameter_at(&element_name(&template.name, i), p);
         }
         Vec3(out)
     }

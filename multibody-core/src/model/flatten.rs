@@ -7,7 +7,9 @@ use crate::hash::HashMap;
 use crate::expr::{Arena, Expr, Id, NameResolver, Node, NodeMap};
 use crate::names::closest;
 
+use super::SharedText;
 use super::error::ModelError;
+use super::path_index::PathIndex;
 use super::system::{Equation, System, join_path, join_path_into};
 use super::variable::{Parameter, VarKind, Variable};
 
@@ -34,7 +36,7 @@ pub enum Origin {
         /// The flow variables of the set (indices in [`FlatSystem::variables`]), each
         /// with whether it enters the sum negated (a connector connected from outside
         /// its component).
-        flows: Vec<(u32, bool)>,
+        flows: Box<[(u32, bool)]>,
     },
     /// The flow of a connector that is connected nowhere is zero.
     UnconnectedFlow {
@@ -42,20 +44,25 @@ pub enum Origin {
         flow: u32,
     },
     /// Decided by the virtual connection graph (orientation propagation along a
-    /// branch or connection, a loop closure residue, a root's equations).
-    Graph {
-        /// The component (empty for connections).
-        path: String,
-        /// What it is, in words.
-        text: String,
-        /// The equation.
-        equation: Equation,
-    },
+    /// branch or connection, a loop closure residue, a root's equations). Boxed: rare,
+    /// and it would make every equation's origin twice as large.
+    Graph(Box<GraphOrigin>),
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
-        var: Arc<str>,
+        var: SharedText,
     },
+}
+
+/// An equation decided by the virtual connection graph (see [`Origin::Graph`]).
+#[derive(Clone, Debug)]
+pub struct GraphOrigin {
+    /// The component (empty for connections).
+    pub path: String,
+    /// What it is, in words.
+    pub text: String,
+    /// The equation.
+    pub equation: Equation,
 }
 
 /// One scalar equation `residual = 0` of a flat system.
@@ -159,17 +166,16 @@ impl FlatSystem {
                 format!("unconnected flow: {} = 0", name(*flow))
             }
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
-            Origin::Graph { text, equation, .. } => {
-                format!("{text}: {} = {}", equation.lhs, equation.rhs)
+            Origin::Graph(g) => {
+                format!("{}: {} = {}", g.text, g.equation.lhs, g.equation.rhs)
             }
         }
     }
 }
 
-struct ConnectorInfo<'s> {
-    class: &'s str,
-    /// Parent system's path.
-    owner: &'s str,
+struct ConnectorInfo {
+    /// The connector class, by its position in `Flattener::classes`.
+    class: u32,
     vars: Vec<(usize, VarKind)>,
     connected_inside: bool,
 }
@@ -180,12 +186,17 @@ struct Flattener<'g, 's> {
     /// Flat index of each declared variable and parameter, by global symbol.
     var_of_sym: Vec<u32>,
     param_of_sym: Vec<u32>,
-    connectors: Vec<ConnectorInfo<'s>>,
-    /// Connectors by path (borrowed from the model: no copy of a path).
-    connector_of_path: HashMap<&'s str, usize>,
+    connectors: Vec<ConnectorInfo>,
+    /// Connectors by path (a compact copy of the paths: a lookup compares with it, not
+    /// with the model's strings).
+    connector_of_path: PathIndex,
+    /// Connector classes by name, numbered in the order met.
+    class_of_name: HashMap<&'s str, u32>,
+    /// Connector class names by number.
+    classes: Vec<&'s str>,
     memo: NodeMap,
     /// Declarations whose names were never interned (pushed by hand): for duplicates.
-    unnamed: HashMap<Arc<str>, u32>,
+    unnamed: HashMap<SharedText, u32>,
     errors: Vec<ModelError>,
     /// Work space for the paths of connectors looked up.
     path_buffer: String,
@@ -203,6 +214,10 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
     table[s] = idx;
     true
 }
+
+/// How many systems ahead of the one being read the next one's declarations are
+/// prefetched.
+const PREFETCH_AHEAD: usize = 4;
 
 fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
     while parent[x] != x {
@@ -237,7 +252,9 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         var_of_sym: vec![u32::MAX; g.n_symbols()],
         param_of_sym: vec![u32::MAX; g.n_symbols()],
         connectors: Vec::new(),
-        connector_of_path: HashMap::default(),
+        connector_of_path: PathIndex::with_capacity(0, 0),
+        class_of_name: HashMap::default(),
+        classes: Vec::new(),
         memo: NodeMap::new(),
         unnamed: HashMap::default(),
         errors: Vec::new(),
@@ -248,7 +265,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     // are counted in the walk that orders the tree.
     let (mut n_variables, mut n_parameters, mut n_equations) = (0, 0, 0);
     // Connections add at most one equation per connector variable.
-    let (mut n_connectors, mut n_connector_variables) = (0, 0);
+    let (mut n_connectors, mut n_connector_variables, mut n_connector_path_bytes) = (0, 0, 0);
     let mut stack = vec![sys];
     let mut order = Vec::new();
     while let Some(s) = stack.pop() {
@@ -259,6 +276,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         if s.connector_class.is_some() {
             n_connectors += 1;
             n_connector_variables += s.variables.len();
+            n_connector_path_bytes += s.path.len();
         }
         for sub in s.subsystems.iter().rev() {
             stack.push(sub);
@@ -274,15 +292,23 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     // Growing the index of connectors by path would hash every path again at each
     // doubling, reading the model's strings once more.
     f.connectors.reserve_exact(n_connectors);
-    f.connector_of_path.reserve(n_connectors);
-    for &s in &order {
+    f.connector_of_path = PathIndex::with_capacity(n_connectors, n_connector_path_bytes);
+    for (k, &s) in order.iter().enumerate() {
+        if let Some(next) = order.get(k + PREFETCH_AHEAD) {
+            crate::prefetch::prefetch_slice(&next.variables);
+            crate::prefetch::prefetch_slice(&next.parameters);
+        }
         f.declare(s);
     }
     if let Some(e) = f.errors.first() {
         return Err(e.clone());
     }
     // Pass 2: equations, starts and parameter values.
-    for s in &order {
+    for (k, s) in order.iter().enumerate() {
+        if let Some(next) = order.get(k + PREFETCH_AHEAD) {
+            crate::prefetch::prefetch_slice(&next.equations);
+            crate::prefetch::prefetch_slice(next.path.as_bytes());
+        }
         // One shared copy of the path for all of this component's equations.
         let path: Arc<str> = Arc::from(s.path.as_str());
         for eq in &s.equations {
@@ -328,11 +354,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         }
     }
     for ge in graph.equations {
-        let origin = Origin::Graph {
+        let origin = Origin::Graph(Box::new(GraphOrigin {
             path: ge.path,
             text: ge.text,
             equation: ge.equation,
-        };
+        }));
         if let Some((r, lhs_var)) = f.translate_equation(&ge.equation, &origin) {
             f.flat.equations.push(FlatEquation {
                 residual: r,
@@ -399,15 +425,19 @@ impl<'s> Flattener<'_, 's> {
             self.flat.parameters.push(p.clone());
         }
         if let Some(class) = &s.connector_class {
-            let owner = match s.path.rfind('.') {
-                Some(i) => &s.path[..i],
-                None => "",
-            };
+            let n_classes = self.classes.len() as u32;
+            let class = *self
+                .class_of_name
+                .entry(class.as_str())
+                .or_insert(n_classes);
+            if class == n_classes {
+                self.classes
+                    .push(s.connector_class.as_deref().unwrap_or_default());
+            }
             self.connector_of_path
-                .insert(s.path.as_str(), self.connectors.len());
+                .insert(&s.path, self.connectors.len() as u32);
             self.connectors.push(ConnectorInfo {
-                class: class.as_str(),
-                owner,
+                class,
                 vars: conn_vars,
                 connected_inside: false,
             });
@@ -420,7 +450,7 @@ impl<'s> Flattener<'_, 's> {
     fn translate_binding(
         &mut self,
         value: Option<Expr>,
-        name: impl FnOnce(&FlatSystem) -> Arc<str>,
+        name: impl FnOnce(&FlatSystem) -> SharedText,
     ) -> Option<Id> {
         let e = value?;
         let origin = Origin::FixedStart {
@@ -509,7 +539,11 @@ impl<'s> Flattener<'_, 's> {
         let mut elems: Vec<(usize, bool)> = Vec::new();
         let mut elem_parent: Vec<usize> = Vec::new();
         for s in order {
-            for c in &s.connections {
+            for (k, c) in s.connections.iter().enumerate() {
+                if let Some(next) = s.connections.get(k + PREFETCH_AHEAD) {
+                    crate::prefetch::prefetch_slice(next.a.as_bytes());
+                    crate::prefetch::prefetch_slice(next.b.as_bytes());
+                }
                 // Written out only for messages.
                 let text = || {
                     format!(
@@ -534,14 +568,16 @@ impl<'s> Flattener<'_, 's> {
                     self.errors.push(ModelError::IncompatibleConnectors {
                         connection: text(),
                         a: join_path(&s.path, &c.a),
-                        class_a: ca.class.to_string(),
+                        class_a: self.classes[ca.class as usize].to_string(),
                         b: join_path(&s.path, &c.b),
-                        class_b: cb.class.to_string(),
+                        class_b: self.classes[cb.class as usize].to_string(),
                     });
                     continue;
                 }
-                let inside_a = ca.owner != s.path;
-                let inside_b = cb.owner != s.path;
+                // A connector of a sub-component (`sd.flange_a`), not of this system
+                // itself: its path goes past this system's by more than one name.
+                let inside_a = c.a.contains('.');
+                let inside_b = c.b.contains('.');
                 let pairs: Vec<((usize, VarKind), (usize, VarKind))> = ca
                     .vars
                     .iter()
@@ -628,7 +664,9 @@ impl<'s> Flattener<'_, 's> {
                 let r = self.flat.arena.linear_combination(0.0, &terms);
                 self.flat.equations.push(FlatEquation {
                     residual: r,
-                    origin: Origin::FlowSum { flows },
+                    origin: Origin::FlowSum {
+                        flows: flows.into_boxed_slice(),
+                    },
                     lhs_var: None,
                 });
             }
@@ -659,8 +697,8 @@ impl<'s> Flattener<'_, 's> {
         text: &dyn Fn() -> String,
     ) -> Option<usize> {
         join_path_into(&s.path, local, &mut self.path_buffer);
-        if let Some(&i) = self.connector_of_path.get(self.path_buffer.as_str()) {
-            return Some(i);
+        if let Some(i) = self.connector_of_path.get(&self.path_buffer) {
+            return Some(i as usize);
         }
         let full = join_path(&s.path, local);
         let prefix = if s.path.is_empty() {
@@ -670,9 +708,8 @@ impl<'s> Flattener<'_, 's> {
         };
         let candidates: Vec<&str> = self
             .connector_of_path
-            .keys()
+            .paths()
             .filter(|k| k.starts_with(&prefix))
-            .copied()
             .collect();
         let mut candidates = candidates;
         candidates.sort();

@@ -6,6 +6,7 @@ mod connection_graph;
 mod error;
 mod flatten;
 mod graph;
+mod path_index;
 mod shared_text;
 mod system;
 mod text;
@@ -14,7 +15,7 @@ mod variable;
 
 pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
-pub use flatten::{FlatEquation, FlatNames, FlatSystem, Origin, flatten};
+pub use flatten::{FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
 pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};

@@ -1,6 +1,7 @@
-//! Descriptions and units of variables and parameters: text that is almost always a
-//! literal of a component's declaration, so it is kept as a `&'static str` when it is
-//! one (copying it touches no memory) and shared behind an `Arc` otherwise.
+//! Names, descriptions and units of variables and parameters: text that is almost
+//! always a literal of a component's declaration or a name kept by the symbol table,
+//! so it is kept as a `&'static str` when it is one (copying it touches no memory) and
+//! shared behind an `Arc` otherwise.
 
 use std::fmt;
 use std::ops::Deref;
@@ -29,6 +30,12 @@ enum Repr {
 }
 
 impl SharedText {
+    /// Whether the text is a `&'static str` (a literal, or a name kept by the symbol
+    /// table): copying it touches no memory.
+    pub fn is_static(&self) -> bool {
+        matches!(self.0, Repr::Static(_))
+    }
+
     /// The text.
     pub fn as_str(&self) -> &str {
         match &self.0 {
@@ -73,6 +80,25 @@ impl From<String> for SharedText {
 impl From<Arc<str>> for SharedText {
     fn from(s: Arc<str>) -> Self {
         SharedText(Repr::Shared(s))
+    }
+}
+
+impl From<&String> for SharedText {
+    fn from(s: &String) -> Self {
+        SharedText(Repr::Shared(s.as_str().into()))
+    }
+}
+
+impl std::borrow::Borrow<str> for SharedText {
+    fn borrow(&self) -> &str {
+        self.as_str()
+    }
+}
+
+impl std::hash::Hash for SharedText {
+    /// Hashes as the `str` it reads as (so a map keyed by texts is searched by `&str`).
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.as_str().hash(state)
     }
 }
 

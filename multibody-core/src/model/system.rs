@@ -1,7 +1,9 @@
 //! Systems: the tree of components a model is built from (the builder API).
 
 use crate::expr::Expr;
+use crate::expr::global::named_leaf;
 
+use super::SharedText;
 use super::variable::{Parameter, VarKind, Variable};
 
 /// A reusable model part: a component (Inertia, Resistor, ...) or a connector type
@@ -146,14 +148,23 @@ impl System {
 
     /// Declares an unknown with default attributes and returns it.
     pub fn var(&mut self, local: &str) -> Expr {
-        self.variable(Variable::new(local))
+        self.variable_at(local, Variable::new(""))
     }
 
     /// Declares an unknown (its `name` is local to this system) and returns it.
-    pub fn variable(&mut self, mut v: Variable) -> Expr {
-        v.name = self.full(&v.name).into();
-        let e = Expr::var(&v.name);
-        v.symbol = e.symbol();
+    pub fn variable(&mut self, v: Variable) -> Expr {
+        let local = v.name.clone();
+        self.variable_at(&local, v)
+    }
+
+    /// Declares `v` under the local name `local` and returns it (`v`'s own name is
+    /// replaced by the full path, as the symbol table keeps it: the variable holds no
+    /// allocation for its name). For variables declared from one template
+    /// (`frame.r_0[1]`, ...).
+    pub fn variable_at(&mut self, local: &str, mut v: Variable) -> Expr {
+        let (e, symbol, name) = named_leaf(&self.full(local), false);
+        v.name = SharedText::from(name);
+        v.symbol = Some(symbol);
         self.variables.push(v);
         e
     }
@@ -161,19 +172,26 @@ impl System {
     /// Declares a connector variable of the given kind (a local name of `""` makes the
     /// variable the connector itself, as Modelica's `RealInput`).
     pub fn connector_var(&mut self, local: &str, kind: VarKind) -> Expr {
-        self.variable(Variable::new(local).kind(kind))
+        self.variable_at(local, Variable::new("").kind(kind))
     }
 
     /// Declares a tunable parameter with a default value and returns it.
     pub fn param(&mut self, local: &str, default: impl Into<Expr>) -> Expr {
-        self.parameter(Parameter::new(local, default))
+        self.parameter_at(local, Parameter::new("", default))
     }
 
     /// Declares a tunable parameter (its `name` is local) and returns it.
-    pub fn parameter(&mut self, mut p: Parameter) -> Expr {
-        p.name = self.full(&p.name).into();
-        let e = Expr::param(&p.name);
-        p.symbol = e.symbol();
+    pub fn parameter(&mut self, p: Parameter) -> Expr {
+        let local = p.name.clone();
+        self.parameter_at(&local, p)
+    }
+
+    /// Declares `p` under the local name `local` and returns it (see
+    /// [`System::variable_at`]).
+    pub fn parameter_at(&mut self, local: &str, mut p: Parameter) -> Expr {
+        let (e, symbol, name) = named_leaf(&self.full(local), true);
+        p.name = SharedText::from(name);
+        p.symbol = Some(symbol);
         self.parameters.push(p);
         e
     }

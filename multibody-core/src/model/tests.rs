@@ -263,3 +263,35 @@ fn bad_connections_are_named() {
     assert!(err.contains("unknown variable `r1.vv`"), "{err}");
     assert!(err.contains("did you mean `r1.v`"), "{err}");
 }
+
+#[test]
+fn declared_names_are_the_symbol_tables_and_flat_equations_stay_small() {
+    let mut m = System::new("m");
+    m.add("r1", &Resistor(2.0));
+    m.add("r2", &Resistor(3.0));
+    // Every declared name is the full path, kept by the symbol table (no allocation of
+    // its own), and the same text for the same path.
+    let r1 = m.subsystem("r1").expect("r1");
+    let v = r1
+        .variables
+        .iter()
+        .find(|v| &*v.name == "r1.v")
+        .expect("r1.v");
+    assert!(v.name.is_static());
+    assert!(r1.parameters[0].name.is_static());
+    assert_eq!(&*r1.parameters[0].name, "r1.R");
+    let pin = r1.subsystem("p").expect("r1.p");
+    assert_eq!(&*pin.variables[0].name, "r1.p.v");
+    assert!(pin.variables[0].name.is_static());
+    let again = Expr::var("r1.p.v").name().expect("a leaf");
+    assert_eq!(again, "r1.p.v");
+    // A variable built by hand keeps its (local) name until it is declared.
+    let local = Variable::new(String::from("x"));
+    assert!(!local.name.is_static());
+    let mut s = System::new("s");
+    s.variable(local);
+    assert!(s.variables[0].name.is_static());
+    // Every pass over the equations reads their origins; a rare kind of origin is
+    // boxed so it does not make them all larger.
+    assert!(std::mem::size_of::<FlatEquation>() <= 48);
+}

@@ -1,7 +1,5 @@
 //! Declarations of unknowns and parameters.
 
-use std::sync::Arc;
-
 use crate::expr::Expr;
 
 use super::SharedText;
@@ -55,8 +53,9 @@ impl StateSelect {
 /// An unknown of the model.
 #[derive(Clone, Debug)]
 pub struct Variable {
-    /// Full path, e.g. `motor.inertia.phi`.
-    pub name: Arc<str>,
+    /// Full path, e.g. `motor.inertia.phi` (local until declared in a system, which
+    /// replaces it by the full path as the symbol table keeps it: a `&'static str`).
+    pub name: SharedText,
     /// Start value (a constant or an expression of parameters); default: none (0).
     pub start: Option<Expr>,
     /// Whether the start value must hold at the initial time (default: false, so the
@@ -78,7 +77,7 @@ pub struct Variable {
 
 impl Variable {
     /// An internal unknown with no start value.
-    pub fn new(name: impl Into<Arc<str>>) -> Self {
+    pub fn new(name: impl Into<SharedText>) -> Self {
         Variable {
             name: name.into(),
             start: None,
@@ -146,8 +145,8 @@ impl Variable {
 /// component is built.)
 #[derive(Clone, Debug)]
 pub struct Parameter {
-    /// Full path, e.g. `motor.R`.
-    pub name: Arc<str>,
+    /// Full path, e.g. `motor.R` (local until declared, as [`Variable::name`]).
+    pub name: SharedText,
     /// Default value or binding expression of other parameters (default: none, which is
     /// an error unless the parameter is computed at initialization).
     pub value: Option<Expr>,
@@ -169,7 +168,7 @@ pub struct Parameter {
 
 impl Parameter {
     /// A parameter with a default value.
-    pub fn new(name: impl Into<Arc<str>>, value: impl Into<Expr>) -> Self {
+    pub fn new(name: impl Into<SharedText>, value: impl Into<Expr>) -> Self {
         Parameter {
             name: name.into(),
             value: Some(value.into()),

@@ -273,11 +273,17 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
             map.insert(leaf, r);
         }
     }
-    // Apply the substitution to the remaining equations.
+    // Apply the substitution to the remaining equations, and note which of them now
+    // read `der(x) = v` (while each new residual is still in the cache; which ones are
+    // taken is decided below, once the derivative rules are known).
     let mut memo = NodeMap::new();
+    let mut derivative_candidates: Vec<(usize, u32, u32)> = Vec::new();
     for (e, eq) in flat.equations.iter_mut().enumerate() {
         if !removed[e] {
             eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
+            if let Some((x, v)) = derivative_pattern(&flat.arena, eq.residual) {
+                derivative_candidates.push((e, x, v));
+            }
         }
     }
     // Derivative rules (der(x) is an expression, as for an orientation matrix): moved
@@ -323,14 +329,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     // Derivative aliases: der(x) = v.
     let mut derivative: Vec<Option<u32>> = vec![None; nv];
     let mut is_derivative = vec![false; nv];
-    for e in 0..ne {
-        if removed[e] {
-            continue;
-        }
-        let r = flat.equations[e].residual;
-        let Some((x, v)) = derivative_pattern(&flat.arena, r) else {
-            continue;
-        };
+    for (e, x, v) in derivative_candidates {
         if derivative[x as usize].is_some()
             || is_derivative[v as usize]
             || x == v

@@ -177,11 +177,12 @@ pub fn structural_simplify_with(
         .iter()
         .map(|&(x, _)| flat.arena.var(x))
         .collect();
-    let tear_priority: HashMap<Id, f64> = variables
+    // From the priorities read once above (not another pass over every variable).
+    let tear_priority: HashMap<Id, f64> = priority
         .iter()
         .enumerate()
-        .filter(|(_, v)| v.state_priority != 0.0)
-        .map(|(i, v)| (flat.arena.var(i as u32), v.state_priority))
+        .filter(|&(_, &p)| p != 0.0)
+        .map(|(i, &p)| (flat.arena.var(i as u32), p))
         .collect();
     let mut temps = Temporaries {
         next: nv as u32,
@@ -403,7 +404,8 @@ fn observed_outputs(
     out.extend(derivatives.iter().map(|s| s.leaf));
     let variables = variables.clone();
     let names = crate::names::NameIndex::lazy(move || {
-        let mut names: Vec<Arc<str>> = Vec::with_capacity(variables.len() + derivatives.len());
+        let mut names: Vec<crate::model::SharedText> =
+            Vec::with_capacity(variables.len() + derivatives.len());
         names.extend(variables.iter().map(|v| v.name.clone()));
         names.extend(derivatives.iter().map(|s| s.name(&variables).into()));
         names

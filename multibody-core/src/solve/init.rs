@@ -287,7 +287,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         .collect();
     let n_unknowns = unknowns.len();
     let observed_names = Arc::new(crate::names::NameIndex::lazy(move || {
-        vec![Arc::from(""); n_unknowns]
+        vec![crate::model::SharedText::default(); n_unknowns]
     }));
     let compiled = compile_dae(
         &mut arena,

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use crate::codegen::Tape;
 use crate::codegen::dae::InputLayout;
+use crate::model::SharedText;
 use crate::names::NameIndex;
 
 use super::error::SolutionError;
@@ -76,7 +77,7 @@ impl Solution {
     }
 
     /// Names of every variable the solution can give.
-    pub fn names(&self) -> &[Arc<str>] {
+    pub fn names(&self) -> &[SharedText] {
         self.names.names()
     }
 
