@@ -10,8 +10,8 @@
 //! contains every variable of its antiderivative and each one's derivative, which is
 //! exactly what matters for the matching (lower-order slots never take part in it).
 
-use super::BipartiteGraph;
 use super::matching::{Matching, maximum_matching};
+use super::{BipartiteGraph, Rows};
 
 /// The result of index reduction.
 #[derive(Clone, Debug, PartialEq)]
@@ -105,7 +105,7 @@ pub fn chain_graph(
 }
 
 struct Search<'a> {
-    adj: &'a [Vec<usize>],
+    adj: &'a Rows,
     var_diff: &'a [Option<usize>],
     var_eq: &'a mut Vec<Option<usize>>,
     eq_var: &'a mut Vec<Option<usize>>,
@@ -232,18 +232,20 @@ pub fn pantelides_with_implicit(
         });
     }
 
-    // Matching graph: implicit slots removed (they are known inside the matching).
-    let mut adj: Vec<Vec<usize>> = graph
-        .eq_vars
-        .iter()
-        .map(|vars| vars.iter().copied().filter(|&v| !is_implicit(v)).collect())
-        .collect();
+    // Matching graph: implicit slots removed (they are known inside the matching). Rows
+    // in one vector each (a vector per equation scatters a large model's graph).
+    let mut adj = Rows::with_capacity(graph.n_eqs(), graph.eq_vars.n_items());
     // The implicit slots of each equation, for its derivative.
-    let mut hidden: Vec<Vec<usize>> = graph
-        .eq_vars
-        .iter()
-        .map(|vars| vars.iter().copied().filter(|&v| is_implicit(v)).collect())
-        .collect();
+    let mut hidden = Rows::with_capacity(graph.n_eqs(), 0);
+    let mut row: Vec<usize> = Vec::new();
+    for vars in graph.eq_vars.iter() {
+        row.clear();
+        row.extend(vars.iter().copied().filter(|&v| !is_implicit(v)));
+        adj.push(&row);
+        row.clear();
+        row.extend(vars.iter().copied().filter(|&v| is_implicit(v)));
+        hidden.push(&row);
+    }
     let mut var_diff: Vec<Option<usize>> = var_diff.to_vec();
     let mut eq_diff: Vec<Option<usize>> = vec![None; adj.len()];
     let mut var_eq: Vec<Option<usize>> = vec![None; var_diff.len()];
@@ -309,7 +311,7 @@ pub fn pantelides_with_implicit(
             for &e in &colored_eqs {
                 if eq_diff[e].is_none() {
                     let mut vars: Vec<usize> = Vec::with_capacity(adj[e].len() * 2);
-                    let mut hid: Vec<usize> = hidden[e].clone();
+                    let mut hid: Vec<usize> = hidden[e].to_vec();
                     for &v in &adj[e] {
                         vars.push(v);
                         if let Some(d) = var_diff[v] {
@@ -330,8 +332,8 @@ pub fn pantelides_with_implicit(
                     hid.sort_unstable();
                     hid.dedup();
                     let ne = adj.len();
-                    adj.push(vars);
-                    hidden.push(hid);
+                    adj.push(&vars);
+                    hidden.push(&hid);
                     eq_diff.push(None);
                     eq_var.push(None);
                     eq_diff[e] = Some(ne);
@@ -355,12 +357,13 @@ pub fn pantelides_with_implicit(
         }
     }
     // The final graph has the full incidence (implicit slots included).
-    for (e, h) in hidden.iter().enumerate() {
-        adj[e].extend(h.iter().copied());
-    }
-    let mut g = BipartiteGraph::new(var_diff.len());
-    for vars in adj {
-        g.add_equation(vars);
+    let mut g =
+        BipartiteGraph::with_capacity(var_diff.len(), adj.len(), adj.n_items() + hidden.n_items());
+    for (vars, h) in adj.iter().zip(hidden.iter()) {
+        row.clear();
+        row.extend_from_slice(vars);
+        row.extend_from_slice(h);
+        g.add_equation_from(&mut row);
     }
     Ok(IndexReduction {
         graph: g,
