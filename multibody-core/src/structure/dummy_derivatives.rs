@@ -141,13 +141,18 @@ pub fn dummy_derivatives_with_intermediates(
             }
             (rank[a].priority, chain, rank[a].declaration)
         };
-        candidates.sort_by(|&x, &y| {
-            let (kx, ky) = (key(x), key(y));
+        // Each key computed once (it walks a derivative chain and reads the ranks,
+        // scattered in a large model), then sorted with its candidate.
+        let mut keyed: Vec<((f64, f64, usize), usize)> =
+            candidates.iter().map(|&v| (key(v), v)).collect();
+        keyed.sort_by(|&(kx, x), &(ky, y)| {
             kx.0.total_cmp(&ky.0)
                 .then(kx.1.total_cmp(&ky.1))
                 .then(ky.2.cmp(&kx.2))
                 .then(y.cmp(&x))
         });
+        candidates.clear();
+        candidates.extend(keyed.iter().map(|&(_, v)| v));
         let mut selected = select(&equations, &candidates, |e| var_eqs_of(e));
         if selected.len() < equations.len() && level >= 2 {
             // The level's equations may reach their candidates only through
