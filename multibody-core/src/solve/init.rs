@@ -147,10 +147,12 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
 
     // Structure: mandatory equations must be matchable.
     let mut graph = BipartiteGraph::with_capacity(unknowns.len(), unknowns.len(), 4 * eqs.len());
-    let mut leaves = Vec::new();
+    let (mut leaves, mut row) = (Vec::new(), Vec::new());
     for (r, _) in &eqs {
         arena.leaves_into(*r, &mut leaves);
-        graph.add_equation(leaves.iter().filter_map(|&l| index.get(l)).collect());
+        row.clear();
+        row.extend(leaves.iter().filter_map(|&l| index.get(l)));
+        graph.add_equation_from(&mut row);
     }
     let m = maximum_matching(&graph, None, None);
     if m.size() < eqs.len() {
