@@ -161,11 +161,10 @@ impl System {
     /// replaced by the full path, as the symbol table keeps it: the variable holds no
     /// allocation for its name). For variables declared from one template
     /// (`frame.r_0[1]`, ...).
-    pub fn variable_at(&mut self, local: &str, mut v: Variable) -> Expr {
+    pub fn variable_at(&mut self, local: &str, v: Variable) -> Expr {
         let (e, symbol, name) = named_leaf(&self.full(local), false);
-        v.name = SharedText::from(name);
-        v.symbol = Some(symbol);
-        self.variables.push(v);
+        let (name, symbol) = (SharedText::from(name), Some(symbol));
+        self.variables.push(Variable { name, symbol, ..v });
         e
     }
 
@@ -188,11 +187,10 @@ impl System {
 
     /// Declares `p` under the local name `local` and returns it (see
     /// [`System::variable_at`]).
-    pub fn parameter_at(&mut self, local: &str, mut p: Parameter) -> Expr {
+    pub fn parameter_at(&mut self, local: &str, p: Parameter) -> Expr {
         let (e, symbol, name) = named_leaf(&self.full(local), true);
-        p.name = SharedText::from(name);
-        p.symbol = Some(symbol);
-        self.parameters.push(p);
+        let (name, symbol) = (SharedText::from(name), Some(symbol));
+        self.parameters.push(Parameter { name, symbol, ..p });
         e
     }
 
