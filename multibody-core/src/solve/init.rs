@@ -201,6 +201,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     keyed.sort_by(|(ka, a), (kb, b)| ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1)).then(a.cmp(b)));
     let candidates: Vec<usize> = keyed.into_iter().map(|(_, s)| s).collect();
     let mut deficiency = unknowns.len() - eqs.len();
+    let mut augmenter = Augmenter::new(unknowns.len(), unknowns.len());
     for s in candidates {
         if deficiency == 0 {
             break;
@@ -210,7 +211,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         graph.eq_vars.push(&[k]);
         let e_new = graph.eq_vars.len() - 1;
         eq_to_var.push(None);
-        if augment(&graph.eq_vars, e_new, &mut var_to_eq, &mut eq_to_var) {
+        if augmenter.augment(&graph.eq_vars, e_new, &mut var_to_eq, &mut eq_to_var) {
             let value = if slot.order == 0 {
                 input.starts[slot.var].unwrap_or(0.0)
             } else {
@@ -431,46 +432,89 @@ fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Are
     0.0
 }
 
-/// Augments the matching along an alternating path from the unmatched equation `root`.
-fn augment(
-    adj: &crate::structure::Rows,
-    root: usize,
-    var_to_eq: &mut [Option<usize>],
-    eq_to_var: &mut [Option<usize>],
-) -> bool {
-    let mut parent: HashMap<usize, usize> = HashMap::default(); // var -> equation reaching it
-    let mut queue = VecDeque::new();
-    queue.push_back(root);
-    let mut seen_eq = crate::hash::HashSet::default();
-    seen_eq.insert(root);
-    while let Some(e) = queue.pop_front() {
-        for &v in &adj[e] {
-            if parent.contains_key(&v) {
-                continue;
-            }
-            parent.insert(v, e);
-            match var_to_eq[v] {
-                None => {
-                    // Flip back to the root.
-                    let mut v = v;
-                    loop {
-                        let e = parent[&v];
-                        let prev = eq_to_var[e];
-                        eq_to_var[e] = Some(v);
-                        var_to_eq[v] = Some(e);
-                        match prev {
-                            Some(pv) if e != root => v = pv,
-                            _ => return true,
+/// Work space of [`Augmenter::augment`], kept across its calls: dense marks, reset
+/// where the last search went (a search costs what it visits, with no hashing and no
+/// allocation).
+struct Augmenter {
+    /// Per variable: the equation the search reached it from (`usize::MAX`: not reached).
+    parent: Vec<usize>,
+    /// Per equation: reached by the search.
+    seen_eq: Vec<bool>,
+    touched_vars: Vec<usize>,
+    touched_eqs: Vec<usize>,
+    queue: VecDeque<usize>,
+}
+
+impl Augmenter {
+    fn new(n_vars: usize, n_eqs: usize) -> Self {
+        Augmenter {
+            parent: vec![usize::MAX; n_vars],
+            seen_eq: vec![false; n_eqs],
+            touched_vars: Vec::new(),
+            touched_eqs: Vec::new(),
+            queue: VecDeque::new(),
+        }
+    }
+
+    /// Augments the matching along an alternating path from the unmatched equation
+    /// `root` (breadth first); false when there is none.
+    fn augment(
+        &mut self,
+        adj: &crate::structure::Rows,
+        root: usize,
+        var_to_eq: &mut [Option<usize>],
+        eq_to_var: &mut [Option<usize>],
+    ) -> bool {
+        for &v in &self.touched_vars {
+            self.parent[v] = usize::MAX;
+        }
+        for &e in &self.touched_eqs {
+            self.seen_eq[e] = false;
+        }
+        self.touched_vars.clear();
+        self.touched_eqs.clear();
+        self.queue.clear();
+        if self.seen_eq.len() < adj.len() {
+            self.seen_eq.resize(adj.len(), false);
+        }
+        if self.parent.len() < var_to_eq.len() {
+            self.parent.resize(var_to_eq.len(), usize::MAX);
+        }
+        self.queue.push_back(root);
+        self.seen_eq[root] = true;
+        self.touched_eqs.push(root);
+        while let Some(e) = self.queue.pop_front() {
+            for &v in &adj[e] {
+                if self.parent[v] != usize::MAX {
+                    continue;
+                }
+                self.parent[v] = e;
+                self.touched_vars.push(v);
+                match var_to_eq[v] {
+                    None => {
+                        // Flip back to the root.
+                        let mut v = v;
+                        loop {
+                            let e = self.parent[v];
+                            let prev = eq_to_var[e];
+                            eq_to_var[e] = Some(v);
+                            var_to_eq[v] = Some(e);
+                            match prev {
+                                Some(pv) if e != root => v = pv,
+                                _ => return true,
+                            }
                         }
                     }
-                }
-                Some(e2) => {
-                    if seen_eq.insert(e2) {
-                        queue.push_back(e2);
+                    Some(e2) => {
+                        if !self.seen_eq[e2] {
+                            self.seen_eq[e2] = true;
+                            self.touched_eqs.push(e2);
+                            self.queue.push_back(e2);
+                        }
                     }
                 }
             }
         }
+        false
     }
-    false
 }
