@@ -174,16 +174,12 @@ impl Expr {
 
     /// The unknown named `name` (a full path such as `motor.inertia.phi`).
     pub fn var(name: &str) -> Expr {
-        let mut g = global();
-        let s = g.symbol(name);
-        Expr(g.arena.var(s))
+        named_leaf(name, false).0
     }
 
     /// The parameter named `name`.
     pub fn param(name: &str) -> Expr {
-        let mut g = global();
-        let s = g.symbol(name);
-        Expr(g.arena.param(s))
+        named_leaf(name, true).0
     }
 
     /// Time.

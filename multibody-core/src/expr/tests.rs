@@ -238,3 +238,28 @@ fn an_extending_arena_finds_its_base_nodes_and_adds_its_own_after_them() {
     assert_eq!(b.node(s2), a.node(s2));
     assert_eq!(b.len(), len);
 }
+
+#[test]
+fn containing_marks_exactly_the_nodes_that_reach_a_key() {
+    let mut a = Arena::new();
+    let (x, y, z) = (a.var(0), a.var(1), a.var(2));
+    let dx = a.der(x);
+    let sum = a.add(dx, y);
+    let sin_sum = a.f1(Func1::Sin, sum);
+    let prod = a.mul(y, z);
+    let top = a.add(sin_sum, prod);
+    let mark = a.containing([dx].into_iter());
+    for (id, expected) in [
+        (dx, true),
+        (sum, true),
+        (sin_sum, true),
+        (top, true),
+        (x, false),
+        (y, false),
+        (z, false),
+        (prod, false),
+    ] {
+        assert_eq!(mark[id.index()], expected, "node {id:?}");
+    }
+    assert!(a.containing(std::iter::empty()).iter().all(|&m| !m));
+}

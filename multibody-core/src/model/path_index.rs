@@ -26,6 +26,14 @@ struct Entry {
     value: u32,
 }
 
+/// Path `i` of a text and its ends (a free function: `insert` reads it while the table
+/// is borrowed mutably).
+fn path_in<'t>(text: &'t str, ends: &[u32], i: u32) -> &'t str {
+    let i = i as usize;
+    let start = if i == 0 { 0 } else { ends[i - 1] as usize };
+    &text[start..ends[i] as usize]
+}
+
 fn path_hash(path: &str) -> u64 {
     crate::hash::FastBuild::default().hash_one(path)
 }
@@ -42,23 +50,14 @@ impl PathIndex {
 
     /// The text of path `i` (in the order they were inserted).
     fn path(&self, i: u32) -> &str {
-        let i = i as usize;
-        let start = if i == 0 { 0 } else { self.ends[i - 1] as usize };
-        &self.text[start..self.ends[i] as usize]
+        path_in(&self.text, &self.ends, i)
     }
 
     /// Records `value` for `path` (a path inserted again gets the new value).
     pub(crate) fn insert(&mut self, path: &str, value: u32) {
         let hash = path_hash(path);
-        let text = &self.text;
-        let ends = &self.ends;
-        let same = |e: &Entry| {
-            e.hash == hash && {
-                let i = e.path as usize;
-                let start = if i == 0 { 0 } else { ends[i - 1] as usize };
-                &text[start..ends[i] as usize] == path
-            }
-        };
+        let (text, ends) = (&self.text, &self.ends);
+        let same = |e: &Entry| e.hash == hash && path_in(text, ends, e.path) == path;
         if let Some(e) = self.table.find_mut(hash, same) {
             e.value = value;
             return;

@@ -83,12 +83,6 @@ impl From<Arc<str>> for SharedText {
     }
 }
 
-impl From<&String> for SharedText {
-    fn from(s: &String) -> Self {
-        SharedText(Repr::Shared(s.as_str().into()))
-    }
-}
-
 impl std::borrow::Borrow<str> for SharedText {
     fn borrow(&self) -> &str {
         self.as_str()

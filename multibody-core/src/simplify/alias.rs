@@ -365,7 +365,7 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
     if !dmap.is_empty() {
         // Only equations that contain a replaced derivative change: found in one pass
         // over the arena in order, not by walking every equation.
-        let affected = containing(&flat.arena, dmap.keys().copied());
+        let affected = flat.arena.containing(dmap.keys().copied());
         let mut memo = NodeMap::new();
         for (e, eq) in flat.equations.iter_mut().enumerate() {
             if !removed[e] && affected[eq.residual.index()] {
@@ -381,28 +381,6 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
         derivative_map: dmap,
         in_rules,
     }
-}
-
-/// Which nodes of `arena` are one of `keys` or contain one: one pass in the order of
-/// the ids, since a node's operands are always older than the node.
-fn containing(arena: &Arena, keys: impl Iterator<Item = Id>) -> Vec<bool> {
-    let n = arena.len();
-    let mut mark = vec![false; n];
-    let mut first = n;
-    for k in keys {
-        mark[k.index()] = true;
-        first = first.min(k.index());
-    }
-    let mut children = Vec::new();
-    for i in first..n {
-        if mark[i] {
-            continue;
-        }
-        children.clear();
-        arena.push_children(Id(i as u32), &mut children);
-        mark[i] = children.iter().any(|c| mark[c.index()]);
-    }
-    mark
 }
 
 /// Recognizes `k der(x) - k v = 0`.

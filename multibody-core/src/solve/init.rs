@@ -10,7 +10,6 @@
 //! like the DAE, and its iteration variables solved by damped Newton with the exact
 //! sparse Jacobian; other start values serve as guesses.
 
-use std::collections::VecDeque;
 use std::sync::Arc;
 
 use crate::hash::HashMap;
@@ -22,7 +21,7 @@ use crate::simplify::SimplifiedSystem;
 use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
 use crate::structure::BipartiteGraph;
 use crate::structure::dm::dulmage_mendelsohn;
-use crate::structure::matching::maximum_matching;
+use crate::structure::matching::{Augmenter, maximum_matching};
 
 use super::error::InitError;
 use super::newton::{NewtonOptions, newton};
@@ -430,91 +429,4 @@ fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Are
         return input.params.get(*j as usize).copied().unwrap_or(0.0);
     }
     0.0
-}
-
-/// Work space of [`Augmenter::augment`], kept across its calls: dense marks, reset
-/// where the last search went (a search costs what it visits, with no hashing and no
-/// allocation).
-struct Augmenter {
-    /// Per variable: the equation the search reached it from (`usize::MAX`: not reached).
-    parent: Vec<usize>,
-    /// Per equation: reached by the search.
-    seen_eq: Vec<bool>,
-    touched_vars: Vec<usize>,
-    touched_eqs: Vec<usize>,
-    queue: VecDeque<usize>,
-}
-
-impl Augmenter {
-    fn new(n_vars: usize, n_eqs: usize) -> Self {
-        Augmenter {
-            parent: vec![usize::MAX; n_vars],
-            seen_eq: vec![false; n_eqs],
-            touched_vars: Vec::new(),
-            touched_eqs: Vec::new(),
-            queue: VecDeque::new(),
-        }
-    }
-
-    /// Augments the matching along an alternating path from the unmatched equation
-    /// `root` (breadth first); false when there is none.
-    fn augment(
-        &mut self,
-        adj: &crate::structure::Rows,
-        root: usize,
-        var_to_eq: &mut [Option<usize>],
-        eq_to_var: &mut [Option<usize>],
-    ) -> bool {
-        for &v in &self.touched_vars {
-            self.parent[v] = usize::MAX;
-        }
-        for &e in &self.touched_eqs {
-            self.seen_eq[e] = false;
-        }
-        self.touched_vars.clear();
-        self.touched_eqs.clear();
-        self.queue.clear();
-        if self.seen_eq.len() < adj.len() {
-            self.seen_eq.resize(adj.len(), false);
-        }
-        if self.parent.len() < var_to_eq.len() {
-            self.parent.resize(var_to_eq.len(), usize::MAX);
-        }
-        self.queue.push_back(root);
-        self.seen_eq[root] = true;
-        self.touched_eqs.push(root);
-        while let Some(e) = self.queue.pop_front() {
-            for &v in &adj[e] {
-                if self.parent[v] != usize::MAX {
-                    continue;
-                }
-                self.parent[v] = e;
-                self.touched_vars.push(v);
-                match var_to_eq[v] {
-                    None => {
-                        // Flip back to the root.
-                        let mut v = v;
-                        loop {
-                            let e = self.parent[v];
-                            let prev = eq_to_var[e];
-                            eq_to_var[e] = Some(v);
-                            var_to_eq[v] = Some(e);
-                            match prev {
-                                Some(pv) if e != root => v = pv,
-                                _ => return true,
-                            }
-                        }
-                    }
-                    Some(e2) => {
-                        if !self.seen_eq[e2] {
-                            self.seen_eq[e2] = true;
-                            self.touched_eqs.push(e2);
-                            self.queue.push_back(e2);
-                        }
-                    }
-                }
-            }
-        }
-        false
-    }
 }

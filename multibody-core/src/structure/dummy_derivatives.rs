@@ -291,30 +291,14 @@ fn select<'a>(
         cand_index[v] = i;
     }
     let candidate_of = |v: usize| cand_index.get(v).copied().filter(|&c| c != usize::MAX);
-    // Candidate -> local equations containing it, in increasing order (rows in one
-    // vector: counted, then filled).
-    let mut start = vec![0usize; candidates.len() + 1];
-    for &e in equations {
-        for &v in vars_of(e) {
-            if let Some(c) = candidate_of(v) {
-                start[c + 1] += 1;
-            }
-        }
-    }
-    for c in 0..candidates.len() {
-        start[c + 1] += start[c];
-    }
-    let mut fill = start.clone();
-    let mut cand_eq_items = vec![0usize; start[candidates.len()]];
-    for (le, &e) in equations.iter().enumerate() {
-        for &v in vars_of(e) {
-            if let Some(c) = candidate_of(v) {
-                cand_eq_items[fill[c]] = le;
-                fill[c] += 1;
-            }
-        }
-    }
-    let cand_eqs = |c: usize| &cand_eq_items[start[c]..start[c + 1]];
+    // Candidate -> local equations containing it, in increasing order.
+    let cand_eqs = super::Rows::grouped(candidates.len(), || {
+        equations.iter().enumerate().flat_map(|(le, &e)| {
+            vars_of(e)
+                .iter()
+                .filter_map(move |&v| candidate_of(v).map(|c| (c, le)))
+        })
+    });
     let mut eq_match: Vec<Option<usize>> = vec![None; equations.len()];
     let mut cand_match: Vec<Option<usize>> = vec![None; candidates.len()];
     let mut parent: Vec<usize> = vec![0; equations.len()];
@@ -335,7 +319,7 @@ fn select<'a>(
         queue.push_back(c);
         let mut found = None;
         'bfs: while let Some(x) = queue.pop_front() {
-            for &le in cand_eqs(x) {
+            for &le in &cand_eqs[x] {
                 if visited[le] {
                     continue;
                 }

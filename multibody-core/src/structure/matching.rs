@@ -181,6 +181,96 @@ pub fn maximum_matching(
     m
 }
 
+/// Augmenting paths from one unmatched equation at a time, for a matching completed
+/// incrementally (the initialization adds equations one by one). The work space is
+/// kept across searches: dense marks, reset where the last search went, so a search
+/// costs what it visits, with no hashing and no allocation.
+pub struct Augmenter {
+    /// Per variable: the equation the search reached it from (`usize::MAX`: not reached).
+    parent: Vec<usize>,
+    /// Per equation: reached by the search.
+    seen_eq: Vec<bool>,
+    touched_vars: Vec<usize>,
+    touched_eqs: Vec<usize>,
+    queue: VecDeque<usize>,
+}
+
+impl Augmenter {
+    /// A work space for a graph of `n_vars` variables and `n_eqs` equations (both may
+    /// grow between searches).
+    pub fn new(n_vars: usize, n_eqs: usize) -> Self {
+        Augmenter {
+            parent: vec![usize::MAX; n_vars],
+            seen_eq: vec![false; n_eqs],
+            touched_vars: Vec::new(),
+            touched_eqs: Vec::new(),
+            queue: VecDeque::new(),
+        }
+    }
+
+    /// Augments the matching along an alternating path from the unmatched equation
+    /// `root` (breadth first); false when there is none.
+    pub fn augment(
+        &mut self,
+        adj: &Rows,
+        root: usize,
+        var_to_eq: &mut [Option<usize>],
+        eq_to_var: &mut [Option<usize>],
+    ) -> bool {
+        for &v in &self.touched_vars {
+            self.parent[v] = usize::MAX;
+        }
+        for &e in &self.touched_eqs {
+            self.seen_eq[e] = false;
+        }
+        self.touched_vars.clear();
+        self.touched_eqs.clear();
+        self.queue.clear();
+        if self.seen_eq.len() < adj.len() {
+            self.seen_eq.resize(adj.len(), false);
+        }
+        if self.parent.len() < var_to_eq.len() {
+            self.parent.resize(var_to_eq.len(), usize::MAX);
+        }
+        self.queue.push_back(root);
+        self.seen_eq[root] = true;
+        self.touched_eqs.push(root);
+        while let Some(e) = self.queue.pop_front() {
+            for &v in &adj[e] {
+                if self.parent[v] != usize::MAX {
+                    continue;
+                }
+                self.parent[v] = e;
+                self.touched_vars.push(v);
+                match var_to_eq[v] {
+                    None => {
+                        // Flip back to the root.
+                        let mut v = v;
+                        loop {
+                            let e = self.parent[v];
+                            let prev = eq_to_var[e];
+                            eq_to_var[e] = Some(v);
+                            var_to_eq[v] = Some(e);
+                            match prev {
+                                Some(pv) if e != root => v = pv,
+                                _ => return true,
+                            }
+                        }
+                    }
+                    Some(e2) => {
+                        if !self.seen_eq[e2] {
+                            self.seen_eq[e2] = true;
+                            self.touched_eqs.push(e2);
+                            self.queue.push_back(e2);
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
 #[cfg(test)]
 #[path = "matching_tests.rs"]
 mod tests;

@@ -203,3 +203,29 @@ fn large_random_planted_perfect_matching() {
     check_valid(&g, &m);
     assert!(m.is_perfect());
 }
+
+#[test]
+fn incremental_augmenting_reaches_a_maximum_matching() {
+    // Equations added one at a time, each matched by an augmenting path when one
+    // exists: the final matching is maximum (against the reference) and valid, and
+    // the work space carries no marks from one search into the next.
+    let mut rng = Rng(777);
+    for _ in 0..200 {
+        let n_vars = 1 + (rng.next() % 10) as usize;
+        let n_eqs = (rng.next() % 12) as usize;
+        let mut g = BipartiteGraph::new(n_vars);
+        let mut m = Matching {
+            eq_to_var: Vec::new(),
+            var_to_eq: vec![None; n_vars],
+        };
+        let mut search = Augmenter::new(n_vars, 0);
+        for _ in 0..n_eqs {
+            let k = (rng.next() % 4) as usize;
+            let e = g.add_equation((0..k).map(|_| (rng.next() as usize) % n_vars).collect());
+            m.eq_to_var.push(None);
+            search.augment(&g.eq_vars, e, &mut m.var_to_eq, &mut m.eq_to_var);
+        }
+        check_valid(&g, &m);
+        assert_eq!(m.size(), reference_size(&g));
+    }
+}

@@ -34,6 +34,29 @@ impl Rows {
         }
     }
 
+    /// `n_rows` rows filled from `(row, item)` pairs, each row's items in the order the
+    /// pairs come (a counting sort: `pairs` is called twice, to count and to fill, so
+    /// no vector per row and no list of pairs is made).
+    pub fn grouped<I: Iterator<Item = (usize, usize)>>(
+        n_rows: usize,
+        pairs: impl Fn() -> I,
+    ) -> Self {
+        let mut offsets = vec![0usize; n_rows + 1];
+        for (r, _) in pairs() {
+            offsets[r + 1] += 1;
+        }
+        for r in 0..n_rows {
+            offsets[r + 1] += offsets[r];
+        }
+        let mut fill = offsets.clone();
+        let mut items = vec![0usize; offsets[n_rows]];
+        for (r, x) in pairs() {
+            items[fill[r]] = x;
+            fill[r] += 1;
+        }
+        Rows { offsets, items }
+    }
+
     /// Total number of entries of all rows.
     pub fn n_items(&self) -> usize {
         self.items.len()
@@ -104,5 +127,13 @@ mod tests {
         r.push(&[5]);
         assert_eq!(&r[2], &[5]);
         assert_eq!(r.iter().map(<[usize]>::len).sum::<usize>(), 3);
+    }
+
+    #[test]
+    fn grouped_rows_keep_the_order_of_their_pairs() {
+        let pairs = [(2, 7), (0, 1), (2, 3), (0, 5)];
+        let r = Rows::grouped(4, || pairs.iter().copied());
+        assert_eq!(r.to_vecs(), vec![vec![1, 5], vec![], vec![7, 3], vec![]]);
+        assert!(Rows::grouped(0, std::iter::empty).is_empty());
     }
 }
