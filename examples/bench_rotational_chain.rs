@@ -6,24 +6,32 @@
 //! `cargo run --release --example bench_rotational_chain [N ...]` prints one JSON object
 //! per line: `n`, `flatten_s`, `simplify_s`, `codegen_s`, `init_s`, `solve_s`,
 //! `compile_s` (flatten through codegen), `steps`, `baseline_solve_s`, `baseline_steps`
-//! and `solve_ratio` (ours / baseline). Compile phases and initialization are the
-//! fastest of 8 rounds over all sizes; solves, ours and the baseline's alternating, the
-//! fastest of 2. A last line gives the growth of each phase between the two largest
+//! and `solve_ratio` (ours / baseline). Solves, ours and the baseline's alternating, are
+//! the fastest of 2. A last line gives the growth of each phase between the two largest
 //! sizes next to that of `N log N` (`n_log_n`).
 //!
+//! Compile phases and initialization are measured the way a program meets them: each
+//! measurement is the first compilation of the model in a fresh process (this program
+//! runs itself with `--compile-once N`; the child compiles a chain of 10 first, so code
+//! and lazily built tables are warm, then builds the chain of N and compiles and
+//! initializes it once). The fastest of 8 rounds counts, each round running every size
+//! in turn. Every size then starts from the same allocator state: in one process, glibc
+//! would keep the memory a chain of 1000 freed for the next round but return that of
+//! 10 000 elements (hundreds of MB) to the kernel, so only the larger size would pay for
+//! fresh pages again in every round. `BENCH_IN_PROCESS=1` compiles every round in this
+//! process instead, for comparison.
+//!
 //! On Linux each row also gives the minor page faults per element of compiling
-//! (`compile_faults_per_n`) and of initializing (`init_faults_per_n`) in the last round:
-//! memory the allocator had to get fresh from the kernel. glibc keeps freed memory of a
-//! model of 1000 elements for the next round but returns that of 10 000 elements to the
-//! kernel, and on a virtual machine each fault costs a few microseconds, which shows in
-//! the growth line (see README.md, Benchmarks).
+//! (`compile_faults_per_n`) and of initializing (`init_faults_per_n`) in the last
+//! round: memory the allocator got fresh from the kernel, which on a virtual machine
+//! costs about 1.5 us per page (see README.md, Benchmarks).
 
 use std::time::Instant;
 
 use multibody::LinearSolverChoice;
 use multibody::prelude::*;
 use multibody::rotational::{Fixed, Inertia, SpringDamper};
-use multibody::simplify::{PhaseTimes, SimplifiedSystem};
+use multibody::simplify::PhaseTimes;
 use multibody::solve::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
 
 /// Rounds of compilation (and initialization) of every size; the fastest counts.
@@ -240,58 +248,152 @@ fn baseline_stats(n: usize, linear_solver: LinearSolver) -> (f64, ida::IdaStats,
     (elapsed, stats, last)
 }
 
-fn main() -> Result<(), multibody::Error> {
+/// Argument that makes this program a compile-once child (see the module doc).
+const CHILD_FLAG: &str = "--compile-once";
+
+/// What one compile-once child measured: seconds of each compile phase, seconds of
+/// initialization, and minor page faults of compiling and of initializing.
+#[derive(Clone, Copy)]
+struct Cold {
+    times: PhaseTimes,
+    init_s: f64,
+    compile_faults: Option<u64>,
+    init_faults: Option<u64>,
+}
+
+/// Compiles and initializes `model` once, timing each phase and counting page faults.
+fn measure(model: &System) -> Result<Cold, multibody::Error> {
+    let f0 = minor_faults();
+    let ssys = structural_simplify(model)?;
+    let times = ssys.statistics().times;
+    let f1 = minor_faults();
+    let t0 = Instant::now();
+    drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
+    let init_s = t0.elapsed().as_secs_f64();
+    let f2 = minor_faults();
+    let diff = |a: Option<u64>, b: Option<u64>| Some(b?.saturating_sub(a?));
+    Ok(Cold {
+        times,
+        init_s,
+        compile_faults: diff(f0, f1),
+        init_faults: diff(f1, f2),
+    })
+}
+
+/// The child's side: compile a tiny chain first (so code, lazily initialized tables and
+/// the symbol table's first block are warm), then build the chain of `n` and compile and
+/// initialize it once, printing `flatten simplify codegen init compile_faults
+/// init_faults` (faults `-` where unknown).
+fn compile_once(n: usize) -> Result<(), multibody::Error> {
+    measure(&chain(10))?;
+    let c = measure(&chain(n))?;
+    let faults = |f: Option<u64>| f.map_or("-".to_string(), |f| f.to_string());
+    println!(
+        "{:e} {:e} {:e} {:e} {} {}",
+        c.times.flatten_s,
+        c.times.simplify_s,
+        c.times.codegen_s,
+        c.init_s,
+        faults(c.compile_faults),
+        faults(c.init_faults)
+    );
+    Ok(())
+}
+
+/// The parent's side: run a compile-once child for `n` and read what it printed.
+fn run_child(n: usize) -> Result<Cold, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find this program: {e}"))?;
+    let out = std::process::Command::new(&exe)
+        .arg(CHILD_FLAG)
+        .arg(n.to_string())
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    let fields: Vec<&str> = text.split_whitespace().collect();
+    let bad = || {
+        format!(
+            "the compile-once child for N = {n} failed ({}): {}{}",
+            out.status,
+            text.trim(),
+            String::from_utf8_lossy(&out.stderr).trim()
+        )
+    };
+    if !out.status.success() || fields.len() != 6 {
+        return Err(bad());
+    }
+    let secs = |k: usize| fields[k].parse::<f64>().map_err(|_| bad());
+    Ok(Cold {
+        times: PhaseTimes {
+            flatten_s: secs(0)?,
+            simplify_s: secs(1)?,
+            codegen_s: secs(2)?,
+        },
+        init_s: secs(3)?,
+        compile_faults: fields[4].parse().ok(),
+        init_faults: fields[5].parse().ok(),
+    })
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some(CHILD_FLAG) {
+        let n = args
+            .get(1)
+            .and_then(|a| a.parse().ok())
+            .ok_or("--compile-once needs the chain's size")?;
+        return Ok(compile_once(n)?);
+    }
     let sizes: Vec<usize> = {
-        let args: Vec<usize> = std::env::args()
-            .skip(1)
-            .filter_map(|a| a.parse().ok())
-            .collect();
-        if args.is_empty() {
+        let given: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+        if given.is_empty() {
             vec![10, 100, 1000, 10000]
         } else {
-            args
+            given
         }
     };
     // Per size: n, flatten, simplify, codegen, init and solve seconds (for the growth line).
     let mut rows: Vec<[f64; 6]> = Vec::new();
-    // Compile phases and initialization: the fastest of several rounds, the sizes
-    // interleaved within each round so that a slow spell of this noisy machine hits
-    // every size alike (and the first run's page faults count for none).
-    let models: Vec<System> = sizes.iter().map(|&n| chain(n)).collect();
-    let mut best: Vec<Option<(SimplifiedSystem, PhaseTimes, f64)>> =
-        sizes.iter().map(|_| None).collect();
-    // Page faults of compiling and initializing in the last round, per size.
-    let mut faults: Vec<(Option<u64>, Option<u64>)> = vec![(None, None); sizes.len()];
+    // Compile phases and initialization: each measurement is the first compilation of
+    // the model in a fresh process (see the module doc); the fastest of several rounds,
+    // the sizes interleaved within each round so that a slow spell of this noisy machine
+    // hits every size alike.
+    // With BENCH_IN_PROCESS set, every round compiles in this process instead (the
+    // protocol before, for comparison: the allocator then keeps what small models freed).
+    let in_process = std::env::var("BENCH_IN_PROCESS").is_ok();
+    let models: Vec<System> = if in_process {
+        sizes.iter().map(|&n| chain(n)).collect()
+    } else {
+        Vec::new()
+    };
+    let mut best: Vec<Option<Cold>> = vec![None; sizes.len()];
     for _round in 0..COMPILE_ROUNDS {
-        for (k, model) in models.iter().enumerate() {
-            let f0 = minor_faults();
-            let ssys = structural_simplify(model)?;
-            let times = ssys.statistics().times;
-            let f1 = minor_faults();
-            let t0 = Instant::now();
-            drop(DaeProblem::new(&ssys, &[], (0.0, T_END))?);
-            let init_s = t0.elapsed().as_secs_f64();
-            let f2 = minor_faults();
-            let diff = |a: Option<u64>, b: Option<u64>| Some(b?.saturating_sub(a?));
-            faults[k] = (diff(f0, f1), diff(f1, f2));
-            best[k] = Some(match best[k].take() {
-                None => (ssys, times, init_s),
-                Some((s, b, i)) => (
-                    s,
-                    PhaseTimes {
-                        flatten_s: b.flatten_s.min(times.flatten_s),
-                        simplify_s: b.simplify_s.min(times.simplify_s),
-                        codegen_s: b.codegen_s.min(times.codegen_s),
+        for (k, &n) in sizes.iter().enumerate() {
+            let c = match models.get(k) {
+                Some(model) => measure(model)?,
+                None => run_child(n)?,
+            };
+            best[k] = Some(match best[k] {
+                None => c,
+                Some(b) => Cold {
+                    times: PhaseTimes {
+                        flatten_s: b.times.flatten_s.min(c.times.flatten_s),
+                        simplify_s: b.times.simplify_s.min(c.times.simplify_s),
+                        codegen_s: b.times.codegen_s.min(c.times.codegen_s),
                     },
-                    i.min(init_s),
-                ),
+                    init_s: b.init_s.min(c.init_s),
+                    ..c
+                },
             });
         }
     }
-    for ((n, compiled), (compile_faults, init_faults)) in
-        sizes.iter().copied().zip(best).zip(faults)
-    {
-        let (ssys, times, init_s) = compiled.expect("every round compiles every size");
+    for (n, cold) in sizes.iter().copied().zip(best) {
+        let Cold {
+            times,
+            init_s,
+            compile_faults,
+            init_faults,
+        } = cold.expect("every round compiles every size");
+        let ssys = structural_simplify(&chain(n))?;
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
         let choice = if ssys.unknowns().len() <= 24 {
             LinearSolverChoice::Dense
