@@ -19,7 +19,9 @@
 //! would keep the memory a chain of 1000 freed for the next round but return that of
 //! 10 000 elements (hundreds of MB) to the kernel, so only the larger size would pay for
 //! fresh pages again in every round. `BENCH_IN_PROCESS=1` compiles every round in this
-//! process instead, for comparison.
+//! process instead, for comparison; `BENCH_WARM=k` has each child compile its model k
+//! times with glibc told to keep freed memory (the fastest counting), so that every
+//! size runs from memory it has already faulted in.
 //!
 //! On Linux each row also gives the minor page faults per element of compiling
 //! (`compile_faults_per_n`) and of initializing (`init_faults_per_n`) in the last
@@ -261,6 +263,21 @@ struct Cold {
     init_faults: Option<u64>,
 }
 
+impl Cold {
+    /// The fastest of `self` and `later` phase by phase, with the faults of `later`.
+    fn fastest(self, later: Cold) -> Cold {
+        Cold {
+            times: PhaseTimes {
+                flatten_s: self.times.flatten_s.min(later.times.flatten_s),
+                simplify_s: self.times.simplify_s.min(later.times.simplify_s),
+                codegen_s: self.times.codegen_s.min(later.times.codegen_s),
+            },
+            init_s: self.init_s.min(later.init_s),
+            ..later
+        }
+    }
+}
+
 /// Compiles and initializes `model` once, timing each phase and counting page faults.
 fn measure(model: &System) -> Result<Cold, multibody::Error> {
     let f0 = minor_faults();
@@ -282,11 +299,16 @@ fn measure(model: &System) -> Result<Cold, multibody::Error> {
 
 /// The child's side: compile a tiny chain first (so code, lazily initialized tables and
 /// the symbol table's first block are warm), then build the chain of `n` and compile and
-/// initialize it once, printing `flatten simplify codegen init compile_faults
-/// init_faults` (faults `-` where unknown).
+/// initialize it once (`BENCH_WARM=k`: k times, the fastest counting), printing
+/// `flatten simplify codegen init compile_faults init_faults` (faults of the last time,
+/// `-` where unknown).
 fn compile_once(n: usize) -> Result<(), multibody::Error> {
     measure(&chain(10))?;
-    let c = measure(&chain(n))?;
+    let model = chain(n);
+    let mut c = measure(&model)?;
+    for _ in 1..warm_repetitions().unwrap_or(1) {
+        c = c.fastest(measure(&model)?);
+    }
     let faults = |f: Option<u64>| f.map_or("-".to_string(), |f| f.to_string());
     println!(
         "{:e} {:e} {:e} {:e} {} {}",
@@ -300,12 +322,26 @@ fn compile_once(n: usize) -> Result<(), multibody::Error> {
     Ok(())
 }
 
+/// `BENCH_WARM=k`: each child compiles its model k times, with glibc told to keep
+/// freed memory, and the fastest counts (every size then runs from memory it already
+/// faulted in).
+fn warm_repetitions() -> Option<usize> {
+    std::env::var("BENCH_WARM").ok()?.parse().ok()
+}
+
 /// The parent's side: run a compile-once child for `n` and read what it printed.
 fn run_child(n: usize) -> Result<Cold, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find this program: {e}"))?;
-    let out = std::process::Command::new(&exe)
-        .arg(CHILD_FLAG)
-        .arg(n.to_string())
+    let mut child = std::process::Command::new(&exe);
+    child.arg(CHILD_FLAG).arg(n.to_string());
+    if warm_repetitions().is_some() {
+        // Past these thresholds glibc would return freed memory to the kernel.
+        child.env(
+            "GLIBC_TUNABLES",
+            "glibc.malloc.trim_threshold=4294967296:glibc.malloc.mmap_threshold=4294967296",
+        );
+    }
+    let out = child
         .output()
         .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
     let text = String::from_utf8_lossy(&out.stdout);
@@ -374,15 +410,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             };
             best[k] = Some(match best[k] {
                 None => c,
-                Some(b) => Cold {
-                    times: PhaseTimes {
-                        flatten_s: b.times.flatten_s.min(c.times.flatten_s),
-                        simplify_s: b.times.simplify_s.min(c.times.simplify_s),
-                        codegen_s: b.times.codegen_s.min(c.times.codegen_s),
-                    },
-                    init_s: b.init_s.min(c.init_s),
-                    ..c
-                },
+                Some(b) => b.fastest(c),
             });
         }
     }
