@@ -205,9 +205,26 @@ pub fn causalize(
         vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
         g.add_equation_from(&mut vars);
     }
-    let m = maximum_matching(&g, None, None);
+    causalize_graph(arena, equations, unknowns, &g, limits, temps)
+}
+
+/// [`causalize`] with the incidence of `equations` in `unknowns` already built: row `e`
+/// of `g` lists the unknowns (indices into `unknowns`) that equation `e` contains, as
+/// [`causalize`] would find them. Initialization has that graph from completing its
+/// conditions, and reading every residual again is a pass over the whole arena.
+pub fn causalize_graph(
+    arena: &mut Arena,
+    equations: &[Id],
+    unknowns: &[Id],
+    g: &BipartiteGraph,
+    limits: LinearBlockLimits,
+    temps: &mut Temporaries<'_>,
+) -> Result<Schedule, Singular> {
+    debug_assert_eq!(g.n_eqs(), equations.len());
+    debug_assert_eq!(g.n_vars, unknowns.len());
+    let m = maximum_matching(g, None, None);
     if !m.is_perfect() || equations.len() != unknowns.len() {
-        let dm = dulmage_mendelsohn(&g, &m, None);
+        let dm = dulmage_mendelsohn(g, &m, None);
         let mut over = dm.over_eqs.clone();
         if over.is_empty() {
             over = dm.unmatched_eqs.clone();
@@ -224,7 +241,7 @@ pub fn causalize(
         steps: Vec::with_capacity(equations.len()),
         ..Schedule::default()
     };
-    for block in blt_flat(&g, &m).iter() {
+    for block in blt_flat(g, &m).iter() {
         let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {
             scalar_block(

@@ -33,8 +33,9 @@ use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::Id;
 use crate::model::{EquationText, FlatOrigins, System, Variable, check_balance, flatten};
+use crate::structure::BipartiteGraph;
 
-use causalize::{Temporaries, causalize};
+use causalize::{Temporaries, causalize_graph};
 use reduce::{ReduceInput, reduce};
 
 /// Options of [`structural_simplify_with`].
@@ -168,6 +169,32 @@ pub fn structural_simplify_with(
         .map(|s| reduced.slots[s].leaf)
         .collect();
     let residuals: Vec<Id> = reduced.equations.iter().map(|e| e.residual).collect();
+    // The incidence in the unknowns, from reduce's (the slots that are not states, in
+    // the same order): reading every residual again is a pass over the whole arena.
+    let incidence = {
+        let mut unknown_of_slot = vec![usize::MAX; reduced.slots.len()];
+        let unknown_slots = (0..reduced.slots.len()).filter(|s| !state_set.contains(s));
+        for (k, s) in unknown_slots.enumerate() {
+            unknown_of_slot[s] = k;
+        }
+        let mut g = BipartiteGraph::with_capacity(
+            unknown_leaves.len(),
+            residuals.len(),
+            reduced.incidence.n_items(),
+        );
+        let mut row = Vec::new();
+        for slots in reduced.incidence.iter() {
+            row.clear();
+            row.extend(
+                slots
+                    .iter()
+                    .map(|&s| unknown_of_slot[s])
+                    .filter(|&k| k != usize::MAX),
+            );
+            g.add_equation_from(&mut row);
+        }
+        g
+    };
     // Default parameter values decide which coefficients may vanish.
     let default_params =
         crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
@@ -190,10 +217,11 @@ pub fn structural_simplify_with(
         never_tear: &never_tear,
         tear_priority: &tear_priority,
     };
-    let schedule = causalize(
+    let schedule = causalize_graph(
         &mut flat.arena,
         &residuals,
         &unknown_leaves,
+        &incidence,
         options.linear_blocks,
         &mut temps,
     )

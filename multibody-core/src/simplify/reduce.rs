@@ -6,11 +6,11 @@ use crate::hash::HashMap;
 
 use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
 use crate::model::{EquationText, Variable};
-use crate::structure::BipartiteGraph;
 use crate::structure::dummy_derivatives::{
     SelectionError, SelectionLevel, StateRank, dummy_derivatives_with_intermediates,
 };
 use crate::structure::pantelides::{StructurallySingular, pantelides_with_implicit};
+use crate::structure::{BipartiteGraph, Rows};
 
 use super::error::SimplifyError;
 
@@ -53,6 +53,9 @@ pub(crate) struct Reduced {
     pub slot_of: IdIndex,
     pub var_diff: Vec<Option<usize>>,
     pub equations: Vec<ReducedEquation>,
+    /// Row `e`: the slots equation `e` contains, as read from its residual (ascending;
+    /// Pantelides' own graph over-approximates a differentiated equation's).
+    pub incidence: Rows,
     pub states: Vec<usize>,
     pub dummy: Vec<bool>,
     pub n_original: usize,
@@ -292,7 +295,8 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         let d = canonical(table.arena, d, derivative_map, &mut memo);
         let text = eqs[src].text.derivative();
         let before = table.slots.len();
-        let _ = incidence(&mut table, d);
+        incidence_into(&mut table, d, &mut leaves, &mut inc);
+        graph.add_equation_from(&mut inc);
         if table.slots.len() != before {
             warnings.push(format!(
                 "index reduction: differentiating `{}` introduced unexpected derivatives",
@@ -413,6 +417,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         slots: table.slots,
         var_diff,
         equations: eqs,
+        incidence: graph.eq_vars,
         states: selection.states,
         dummy,
         n_original,

@@ -18,7 +18,7 @@ use crate::model::EquationText;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, IdIndex, Node};
 use crate::simplify::SimplifiedSystem;
-use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize};
+use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize_graph};
 use crate::structure::BipartiteGraph;
 use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::{Augmenter, maximum_matching};
@@ -267,10 +267,14 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         never_tear,
         tear_priority: &tear_priority,
     };
-    let schedule = causalize(
+    // The incidence built above (with a row for every assumed start) is exactly what
+    // causalizing would read from the residuals again.
+    debug_assert_eq!(graph.n_eqs(), residuals.len());
+    let schedule = causalize_graph(
         &mut arena,
         &residuals,
         &unknowns,
+        &graph,
         LinearBlockLimits::default(),
         &mut temps,
     )
