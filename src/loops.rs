@@ -121,6 +121,23 @@ fn collect(s: &System, frames: &mut Vec<String>, g: &mut Graph) {
     }
 }
 
+/// The revolute joints in `s` and below, counted up to `enough`.
+fn count_revolute_joints(s: &System, enough: usize) -> usize {
+    if s.type_name == "MultiBody.Joints.Revolute" {
+        return 1;
+    }
+    let mut n = 0;
+    for sub in &s.subsystems {
+        if n >= enough {
+            break;
+        }
+        if !sub.is_connector() {
+            n += count_revolute_joints(sub, enough - n);
+        }
+    }
+    n
+}
+
 fn find(parent: &mut [usize], mut x: usize) -> usize {
     while parent[x] != x {
         parent[x] = parent[parent[x]];
@@ -192,6 +209,11 @@ fn is_planar(links: &[&Link]) -> bool {
 /// The planar loops of a model: for each, the paths of its revolute and prismatic
 /// joints in loop order.
 pub fn planar_loops(model: &System) -> Vec<Vec<String>> {
+    // A planar loop has two revolute joints at least: a model with fewer (any model of
+    // 1-D components) needs no graph of its connections.
+    if count_revolute_joints(model, 2) < 2 {
+        return Vec::new();
+    }
     let mut g = Graph::default();
     let mut frames = Vec::new();
     collect(model, &mut frames, &mut g);

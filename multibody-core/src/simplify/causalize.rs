@@ -11,7 +11,7 @@
 
 use crate::hash::{HashMap, HashSet};
 
-use crate::expr::{Arena, Id, IdIndex, Node};
+use crate::expr::{Arena, Id, IdIndex, LinearSolve, Node};
 use crate::structure::BipartiteGraph;
 use crate::structure::blt::blt_flat;
 use crate::structure::dm::dulmage_mendelsohn;
@@ -127,6 +127,22 @@ pub struct Schedule {
     pub residuals: Vec<(Id, usize)>,
     /// The blocks that are not plain assignments.
     pub blocks: Vec<BlockInfo>,
+    /// Per equation: the unknown its scalar block solved it for and how, when it is
+    /// linear in it (`None` for equations of larger blocks and nonlinear ones). A later
+    /// causalization of the same equations in an extending arena (the initialization)
+    /// reuses these instead of solving again.
+    pub solved_for: Vec<Option<SolvedFor>>,
+}
+
+/// An equation solved for one unknown (see [`Schedule::solved_for`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SolvedFor {
+    /// The equation's residual.
+    pub residual: Id,
+    /// The unknown (a leaf).
+    pub unknown: Id,
+    /// The solution and its coefficient, as [`Arena::solve_linear`] gave them.
+    pub solve: LinearSolve,
 }
 
 /// Causalization failed: the system is structurally singular.
@@ -205,23 +221,48 @@ pub fn causalize(
         vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
         g.add_equation_from(&mut vars);
     }
-    causalize_graph(arena, equations, unknowns, &g, limits, temps)
+    causalize_graph(arena, equations, unknowns, &g, &[], limits, temps)
+}
+
+/// Whether row `e` of `g` lists exactly the unknowns residual `e` contains (what
+/// [`causalize`] reads; checked in debug builds when a caller brings its own graph).
+fn incidence_matches(arena: &Arena, equations: &[Id], unknowns: &[Id], g: &BipartiteGraph) -> bool {
+    let index = IdIndex::new(unknowns);
+    let (mut leaves, mut vars) = (Vec::new(), Vec::new());
+    g.n_eqs() == equations.len()
+        && equations.iter().zip(g.eq_vars.iter()).all(|(&r, row)| {
+            arena.leaves_into(r, &mut leaves);
+            vars.clear();
+            vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
+            vars.sort_unstable();
+            vars.dedup();
+            vars == row
+        })
 }
 
 /// [`causalize`] with the incidence of `equations` in `unknowns` already built: row `e`
 /// of `g` lists the unknowns (indices into `unknowns`) that equation `e` contains, as
 /// [`causalize`] would find them. Initialization has that graph from completing its
 /// conditions, and reading every residual again is a pass over the whole arena.
+///
+/// `reuse[e]` (possibly shorter than `equations`): how an earlier causalization solved
+/// equation `e`, from [`Schedule::solved_for`], in this arena or the one it extends. It
+/// is used when equation `e` has the same residual and is again solved for the same
+/// unknown, and gives what solving again would (the arena interns every node once).
 pub fn causalize_graph(
     arena: &mut Arena,
     equations: &[Id],
     unknowns: &[Id],
     g: &BipartiteGraph,
+    reuse: &[Option<SolvedFor>],
     limits: LinearBlockLimits,
     temps: &mut Temporaries<'_>,
 ) -> Result<Schedule, Singular> {
-    debug_assert_eq!(g.n_eqs(), equations.len());
     debug_assert_eq!(g.n_vars, unknowns.len());
+    debug_assert!(
+        incidence_matches(arena, equations, unknowns, g),
+        "the incidence given to causalize_graph is not the residuals'"
+    );
     let m = maximum_matching(g, None, None);
     if !m.is_perfect() || equations.len() != unknowns.len() {
         let dm = dulmage_mendelsohn(g, &m, None);
@@ -239,19 +280,27 @@ pub fn causalize_graph(
     // large model otherwise grow by copying through several doublings.
     let mut out = Schedule {
         steps: Vec::with_capacity(equations.len()),
+        solved_for: vec![None; equations.len()],
         ..Schedule::default()
     };
     for block in blt_flat(g, &m).iter() {
         let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {
-            scalar_block(
-                arena,
-                equations[eqs[0]],
-                eqs[0],
-                unknowns[vars[0]],
-                temps.params,
-                &mut out,
-            );
+            let (e, x) = (eqs[0], unknowns[vars[0]]);
+            let solved = match reuse.get(e) {
+                Some(&Some(known)) if known.unknown == x && known.residual == equations[e] => {
+                    Some(known.solve)
+                }
+                _ => arena.solve_linear(equations[e], x),
+            };
+            if let Some(solve) = solved {
+                out.solved_for[e] = Some(SolvedFor {
+                    residual: equations[e],
+                    unknown: x,
+                    solve,
+                });
+            }
+            scalar_block(arena, equations[e], e, x, solved, temps.params, &mut out);
         } else {
             let block_eqs: Vec<Id> = eqs.iter().map(|&e| equations[e]).collect();
             let block_vars: Vec<Id> = vars.iter().map(|&v| unknowns[v]).collect();
@@ -262,8 +311,18 @@ pub fn causalize_graph(
     Ok(out)
 }
 
-fn scalar_block(arena: &mut Arena, r: Id, e: usize, x: Id, params: &[f64], out: &mut Schedule) {
-    match arena.solve_linear(r, x) {
+/// Equation `e` (residual `r`) alone determines `x`; `solved` is its solution for `x`
+/// when it is linear in it.
+fn scalar_block(
+    arena: &mut Arena,
+    r: Id,
+    e: usize,
+    x: Id,
+    solved: Option<LinearSolve>,
+    params: &[f64],
+    out: &mut Schedule,
+) {
+    match solved {
         Some(sol) if safe_coefficient(arena, sol.coefficient, params) => {
             out.steps.push(Step::Assign {
                 target: x,

@@ -16,6 +16,8 @@ mod reroot;
 mod system;
 
 #[cfg(test)]
+mod causalize_reuse_tests;
+#[cfg(test)]
 mod linear_block_tests;
 #[cfg(test)]
 mod tests;
@@ -222,6 +224,7 @@ pub fn structural_simplify_with(
         &residuals,
         &unknown_leaves,
         &incidence,
+        &[],
         options.linear_blocks,
         &mut temps,
     )

@@ -219,6 +219,7 @@ mod tests {
             iteration: vec![x],
             residuals: vec![(residual, 0)],
             blocks: Vec::new(),
+            solved_for: Vec::new(),
         };
         let priority: HashMap<Id, f64> = [(s, 3.0)].into_iter().collect();
         assert_eq!(

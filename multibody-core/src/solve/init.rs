@@ -275,6 +275,8 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         &residuals,
         &unknowns,
         &graph,
+        // The model's equations come first, as the model's schedule numbers them.
+        &sys.schedule.solved_for,
         LinearBlockLimits::default(),
         &mut temps,
     )
