@@ -34,8 +34,9 @@ fn pair() -> Pair {
     }
 }
 
-/// Causalizes the pair through `causalize_graph` with `reuse`.
-fn with_reuse(s: &mut Pair, reuse: &[Option<SolvedFor>]) -> Schedule {
+/// Causalizes the pair: by `causalize` (reading the residuals) without `reuse`, by
+/// `causalize_graph` with the pair's incidence and `reuse` with it.
+fn schedule(s: &mut Pair, reuse: Option<&[Option<SolvedFor>]>) -> Schedule {
     let (never_tear, tear_priority) = (HashSet::default(), HashMap::default());
     let mut temps = Temporaries {
         next: 2,
@@ -43,39 +44,29 @@ fn with_reuse(s: &mut Pair, reuse: &[Option<SolvedFor>]) -> Schedule {
         never_tear: &never_tear,
         tear_priority: &tear_priority,
     };
-    let mut g = BipartiteGraph::new(2);
-    g.add_equation(vec![0, 1]);
-    g.add_equation(vec![1]);
-    causalize_graph(
-        &mut s.arena,
-        &s.residuals,
-        &[s.x, s.y],
-        &g,
-        reuse,
-        LinearBlockLimits::default(),
-        &mut temps,
-    )
-    .expect("the pair is regular")
+    let (unknowns, limits) = ([s.x, s.y], LinearBlockLimits::default());
+    let result = match reuse {
+        None => causalize(&mut s.arena, &s.residuals, &unknowns, limits, &mut temps),
+        Some(reuse) => {
+            let mut g = BipartiteGraph::new(2);
+            g.add_equation(vec![0, 1]);
+            g.add_equation(vec![1]);
+            let (arena, residuals) = (&mut s.arena, &s.residuals);
+            causalize_graph(arena, residuals, &unknowns, &g, reuse, limits, &mut temps)
+        }
+    };
+    result.expect("the pair is regular")
+}
+
+/// [`schedule`] through `causalize_graph` with `reuse`.
+fn with_reuse(s: &mut Pair, reuse: &[Option<SolvedFor>]) -> Schedule {
+    schedule(s, Some(reuse))
 }
 
 #[test]
 fn the_first_causalization_records_how_it_solved_each_equation() {
     let mut s = pair();
-    let (never_tear, tear_priority) = (HashSet::default(), HashMap::default());
-    let mut temps = Temporaries {
-        next: 2,
-        params: &[4.0],
-        never_tear: &never_tear,
-        tear_priority: &tear_priority,
-    };
-    let first = causalize(
-        &mut s.arena,
-        &s.residuals,
-        &[s.x, s.y],
-        LinearBlockLimits::default(),
-        &mut temps,
-    )
-    .unwrap();
+    let first = schedule(&mut s, None);
     let [r0, r1] = s.residuals;
     let x_from_r0 = s.arena.solve_linear(r0, s.x).unwrap();
     let y_from_r1 = s.arena.solve_linear(r1, s.y).unwrap();
