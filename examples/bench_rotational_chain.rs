@@ -253,20 +253,21 @@ fn baseline_stats(n: usize, linear_solver: LinearSolver) -> (f64, ida::IdaStats,
 /// Argument that makes this program a compile-once child (see the module doc).
 const CHILD_FLAG: &str = "--compile-once";
 
-/// What one compile-once child measured: seconds of each compile phase, seconds of
-/// initialization, and minor page faults of compiling and of initializing.
+/// One measurement of compiling and initializing a model: seconds of each compile
+/// phase, seconds of initialization, and minor page faults of compiling and of
+/// initializing.
 #[derive(Clone, Copy)]
-struct Cold {
+struct Measured {
     times: PhaseTimes,
     init_s: f64,
     compile_faults: Option<u64>,
     init_faults: Option<u64>,
 }
 
-impl Cold {
+impl Measured {
     /// The fastest of `self` and `later` phase by phase, with the faults of `later`.
-    fn fastest(self, later: Cold) -> Cold {
-        Cold {
+    fn fastest(self, later: Measured) -> Measured {
+        Measured {
             times: PhaseTimes {
                 flatten_s: self.times.flatten_s.min(later.times.flatten_s),
                 simplify_s: self.times.simplify_s.min(later.times.simplify_s),
@@ -279,7 +280,7 @@ impl Cold {
 }
 
 /// Compiles and initializes `model` once, timing each phase and counting page faults.
-fn measure(model: &System) -> Result<Cold, multibody::Error> {
+fn measure(model: &System) -> Result<Measured, multibody::Error> {
     let f0 = minor_faults();
     let ssys = structural_simplify(model)?;
     let times = ssys.statistics().times;
@@ -289,7 +290,7 @@ fn measure(model: &System) -> Result<Cold, multibody::Error> {
     let init_s = t0.elapsed().as_secs_f64();
     let f2 = minor_faults();
     let diff = |a: Option<u64>, b: Option<u64>| Some(b?.saturating_sub(a?));
-    Ok(Cold {
+    Ok(Measured {
         times,
         init_s,
         compile_faults: diff(f0, f1),
@@ -330,7 +331,7 @@ fn warm_repetitions() -> Option<usize> {
 }
 
 /// The parent's side: run a compile-once child for `n` and read what it printed.
-fn run_child(n: usize) -> Result<Cold, String> {
+fn run_child(n: usize) -> Result<Measured, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find this program: {e}"))?;
     let mut child = std::process::Command::new(&exe);
     child.arg(CHILD_FLAG).arg(n.to_string());
@@ -358,7 +359,7 @@ fn run_child(n: usize) -> Result<Cold, String> {
         return Err(bad());
     }
     let secs = |k: usize| fields[k].parse::<f64>().map_err(|_| bad());
-    Ok(Cold {
+    Ok(Measured {
         times: PhaseTimes {
             flatten_s: secs(0)?,
             simplify_s: secs(1)?,
@@ -401,26 +402,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         Vec::new()
     };
-    let mut best: Vec<Option<Cold>> = vec![None; sizes.len()];
+    let mut best: Vec<Option<Measured>> = vec![None; sizes.len()];
     for _round in 0..COMPILE_ROUNDS {
         for (k, &n) in sizes.iter().enumerate() {
             let c = match models.get(k) {
                 Some(model) => measure(model)?,
                 None => run_child(n)?,
             };
-            best[k] = Some(match best[k] {
-                None => c,
-                Some(b) => b.fastest(c),
-            });
+            best[k] = Some(best[k].map_or(c, |b| b.fastest(c)));
         }
     }
-    for (n, cold) in sizes.iter().copied().zip(best) {
-        let Cold {
+    for (n, measured) in sizes.iter().copied().zip(best) {
+        let Measured {
             times,
             init_s,
             compile_faults,
             init_faults,
-        } = cold.expect("every round compiles every size");
+        } = measured.expect("every round compiles every size");
         let ssys = structural_simplify(&chain(n))?;
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
         let choice = if ssys.unknowns().len() <= 24 {

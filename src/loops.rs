@@ -68,6 +68,9 @@ impl Graph {
 
 const GROUND: &str = "<ground>";
 
+/// The type name of a revolute joint.
+const REVOLUTE: &str = "MultiBody.Joints.Revolute";
+
 fn vector(s: &System, name: &str, default: [f64; 3]) -> [f64; 3] {
     match s.structural_value(name) {
         Some(v) if v.len() == 3 => [v[0], v[1], v[2]],
@@ -92,7 +95,7 @@ fn collect(s: &System, frames: &mut Vec<String>, g: &mut Graph) {
     }
     let frame = |local: &str| join_path(&s.path, local);
     let leaf = match s.type_name.as_str() {
-        "MultiBody.Joints.Revolute" => Some(if flag(s, "iscut") && flag(s, "planar_cut") {
+        REVOLUTE => Some(if flag(s, "iscut") && flag(s, "planar_cut") {
             Link::Resolved
         } else {
             Link::Revolute(vector(s, "n", [0.0, 0.0, 1.0]))
@@ -123,7 +126,7 @@ fn collect(s: &System, frames: &mut Vec<String>, g: &mut Graph) {
 
 /// The revolute joints in `s` and below, counted up to `enough`.
 fn count_revolute_joints(s: &System, enough: usize) -> usize {
-    if s.type_name == "MultiBody.Joints.Revolute" {
+    if s.type_name == REVOLUTE {
         return 1;
     }
     let mut n = 0;
@@ -270,11 +273,7 @@ pub fn remove_planar_redundancy(model: &System, loops: &[Vec<String>]) -> System
     for joints in loops {
         let revolutes: Vec<&String> = joints
             .iter()
-            .filter(|j| {
-                model
-                    .subsystem(j)
-                    .is_some_and(|s| s.type_name == "MultiBody.Joints.Revolute")
-            })
+            .filter(|j| model.subsystem(j).is_some_and(|s| s.type_name == REVOLUTE))
             .collect();
         let Some(chosen) = revolutes
             .iter()

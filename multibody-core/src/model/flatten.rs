@@ -424,15 +424,14 @@ impl<'s> Flattener<'_, 's> {
             }
             self.flat.parameters.push(p.clone());
         }
-        if let Some(class) = &s.connector_class {
+        if let Some(class_name) = &s.connector_class {
             let n_classes = self.classes.len() as u32;
             let class = *self
                 .class_of_name
-                .entry(class.as_str())
+                .entry(class_name.as_str())
                 .or_insert(n_classes);
             if class == n_classes {
-                self.classes
-                    .push(s.connector_class.as_deref().unwrap_or_default());
+                self.classes.push(class_name.as_str());
             }
             self.connector_of_path
                 .insert(&s.path, self.connectors.len() as u32);

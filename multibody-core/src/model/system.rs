@@ -162,10 +162,16 @@ impl System {
     /// allocation for its name). For variables declared from one template
     /// (`frame.r_0[1]`, ...).
     pub fn variable_at(&mut self, local: &str, v: Variable) -> Expr {
-        let (e, symbol, name) = named_leaf(&self.full(local), false);
-        let (name, symbol) = (SharedText::from(name), Some(symbol));
+        let (e, name, symbol) = self.declared(local, false);
         self.variables.push(Variable { name, symbol, ..v });
         e
+    }
+
+    /// The leaf (a parameter's with `param`), name and symbol of a declaration under
+    /// the local name `local`.
+    fn declared(&self, local: &str, param: bool) -> (Expr, SharedText, Option<u32>) {
+        let (e, symbol, name) = named_leaf(&self.full(local), param);
+        (e, SharedText::from(name), Some(symbol))
     }
 
     /// Declares a connector variable of the given kind (a local name of `""` makes the
@@ -188,8 +194,7 @@ impl System {
     /// Declares `p` under the local name `local` and returns it (see
     /// [`System::variable_at`]).
     pub fn parameter_at(&mut self, local: &str, p: Parameter) -> Expr {
-        let (e, symbol, name) = named_leaf(&self.full(local), true);
-        let (name, symbol) = (SharedText::from(name), Some(symbol));
+        let (e, name, symbol) = self.declared(local, true);
         self.parameters.push(Parameter { name, symbol, ..p });
         e
     }

@@ -212,32 +212,37 @@ pub fn causalize(
     temps: &mut Temporaries<'_>,
 ) -> Result<Schedule, Singular> {
     let index = IdIndex::new(unknowns);
+    let g = incidence_graph(arena, equations.iter().copied(), &index, unknowns.len());
+    causalize_graph(arena, equations, unknowns, &g, &[], limits, temps)
+}
+
+/// The incidence of `residuals` in the unknowns `index` numbers (`n_unknowns` of them):
+/// row `e` lists the unknowns residual `e` contains, ascending. Room is left for more
+/// rows (the initialization adds some).
+pub(crate) fn incidence_graph(
+    arena: &Arena,
+    residuals: impl ExactSizeIterator<Item = Id>,
+    index: &IdIndex,
+    n_unknowns: usize,
+) -> BipartiteGraph {
     // Room for a few unknowns per equation.
-    let mut g = BipartiteGraph::with_capacity(unknowns.len(), equations.len(), 4 * equations.len());
+    let n = residuals.len();
+    let mut g = BipartiteGraph::with_capacity(n_unknowns, n, 4 * n);
     let (mut leaves, mut vars) = (Vec::new(), Vec::new());
-    for &r in equations {
+    for r in residuals {
         arena.leaves_into(r, &mut leaves);
         vars.clear();
         vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
         g.add_equation_from(&mut vars);
     }
-    causalize_graph(arena, equations, unknowns, &g, &[], limits, temps)
+    g
 }
 
-/// Whether row `e` of `g` lists exactly the unknowns residual `e` contains (what
-/// [`causalize`] reads; checked in debug builds when a caller brings its own graph).
+/// Whether `g` is the incidence of `equations` in `unknowns` (what [`causalize`]
+/// reads; checked in debug builds when a caller brings its own graph).
 fn incidence_matches(arena: &Arena, equations: &[Id], unknowns: &[Id], g: &BipartiteGraph) -> bool {
-    let index = IdIndex::new(unknowns);
-    let (mut leaves, mut vars) = (Vec::new(), Vec::new());
-    g.n_eqs() == equations.len()
-        && equations.iter().zip(g.eq_vars.iter()).all(|(&r, row)| {
-            arena.leaves_into(r, &mut leaves);
-            vars.clear();
-            vars.extend(leaves.iter().filter_map(|&l| index.get(l)));
-            vars.sort_unstable();
-            vars.dedup();
-            vars == row
-        })
+    let own = incidence_graph(arena, equations.iter().copied(), &IdIndex::new(unknowns), 0);
+    own.eq_vars == g.eq_vars
 }
 
 /// [`causalize`] with the incidence of `equations` in `unknowns` already built: row `e`
@@ -287,20 +292,8 @@ pub fn causalize_graph(
         let (eqs, vars) = (block.eqs, block.vars);
         if eqs.len() == 1 {
             let (e, x) = (eqs[0], unknowns[vars[0]]);
-            let solved = match reuse.get(e) {
-                Some(&Some(known)) if known.unknown == x && known.residual == equations[e] => {
-                    Some(known.solve)
-                }
-                _ => arena.solve_linear(equations[e], x),
-            };
-            if let Some(solve) = solved {
-                out.solved_for[e] = Some(SolvedFor {
-                    residual: equations[e],
-                    unknown: x,
-                    solve,
-                });
-            }
-            scalar_block(arena, equations[e], e, x, solved, temps.params, &mut out);
+            let known = reuse.get(e).copied().flatten();
+            scalar_block(arena, equations[e], e, x, known, temps.params, &mut out);
         } else {
             let block_eqs: Vec<Id> = eqs.iter().map(|&e| equations[e]).collect();
             let block_vars: Vec<Id> = vars.iter().map(|&v| unknowns[v]).collect();
@@ -311,17 +304,29 @@ pub fn causalize_graph(
     Ok(out)
 }
 
-/// Equation `e` (residual `r`) alone determines `x`; `solved` is its solution for `x`
-/// when it is linear in it.
+/// Equation `e` (residual `r`) alone determines `x`. `known`: how an earlier
+/// causalization solved it, taken when it is for the same residual and unknown; the
+/// solution (when `r` is linear in `x`) is recorded in `out.solved_for`.
 fn scalar_block(
     arena: &mut Arena,
     r: Id,
     e: usize,
     x: Id,
-    solved: Option<LinearSolve>,
+    known: Option<SolvedFor>,
     params: &[f64],
     out: &mut Schedule,
 ) {
+    let solved = match known {
+        Some(k) if k.residual == r && k.unknown == x => Some(k.solve),
+        _ => arena.solve_linear(r, x),
+    };
+    if let Some(solve) = solved {
+        out.solved_for[e] = Some(SolvedFor {
+            residual: r,
+            unknown: x,
+            solve,
+        });
+    }
     match solved {
         Some(sol) if safe_coefficient(arena, sol.coefficient, params) => {
             out.steps.push(Step::Assign {

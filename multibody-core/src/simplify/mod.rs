@@ -166,37 +166,34 @@ pub fn structural_simplify_with(
 
     // Sorting: every slot that is not a state is an unknown.
     let state_set: HashSet<usize> = reduced.states.iter().copied().collect();
-    let unknown_leaves: Vec<Id> = (0..reduced.slots.len())
-        .filter(|s| !state_set.contains(s))
-        .map(|s| reduced.slots[s].leaf)
-        .collect();
+    let mut unknown_leaves: Vec<Id> = Vec::new();
+    // The unknown each slot is (`usize::MAX` for states).
+    let mut unknown_of_slot = vec![usize::MAX; reduced.slots.len()];
+    for (s, slot) in reduced.slots.iter().enumerate() {
+        if !state_set.contains(&s) {
+            unknown_of_slot[s] = unknown_leaves.len();
+            unknown_leaves.push(slot.leaf);
+        }
+    }
     let residuals: Vec<Id> = reduced.equations.iter().map(|e| e.residual).collect();
-    // The incidence in the unknowns, from reduce's (the slots that are not states, in
-    // the same order): reading every residual again is a pass over the whole arena.
-    let incidence = {
-        let mut unknown_of_slot = vec![usize::MAX; reduced.slots.len()];
-        let unknown_slots = (0..reduced.slots.len()).filter(|s| !state_set.contains(s));
-        for (k, s) in unknown_slots.enumerate() {
-            unknown_of_slot[s] = k;
-        }
-        let mut g = BipartiteGraph::with_capacity(
-            unknown_leaves.len(),
-            residuals.len(),
-            reduced.incidence.n_items(),
+    // The incidence in the unknowns, from reduce's in the slots: reading every residual
+    // again is a pass over the whole arena.
+    let mut incidence = BipartiteGraph::with_capacity(
+        unknown_leaves.len(),
+        residuals.len(),
+        reduced.incidence.n_items(),
+    );
+    let mut row = Vec::new();
+    for slots in reduced.incidence.iter() {
+        row.clear();
+        row.extend(
+            slots
+                .iter()
+                .map(|&s| unknown_of_slot[s])
+                .filter(|&k| k != usize::MAX),
         );
-        let mut row = Vec::new();
-        for slots in reduced.incidence.iter() {
-            row.clear();
-            row.extend(
-                slots
-                    .iter()
-                    .map(|&s| unknown_of_slot[s])
-                    .filter(|&k| k != usize::MAX),
-            );
-            g.add_equation_from(&mut row);
-        }
-        g
-    };
+        incidence.add_equation_from(&mut row);
+    }
     // Default parameter values decide which coefficients may vanish.
     let default_params =
         crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())

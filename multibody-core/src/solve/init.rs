@@ -18,8 +18,9 @@ use crate::model::EquationText;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
 use crate::expr::{Id, IdIndex, Node};
 use crate::simplify::SimplifiedSystem;
-use crate::simplify::causalize::{LinearBlockLimits, Temporaries, causalize_graph};
-use crate::structure::BipartiteGraph;
+use crate::simplify::causalize::{
+    LinearBlockLimits, Temporaries, causalize_graph, incidence_graph,
+};
 use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::{Augmenter, maximum_matching};
 
@@ -145,14 +146,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     }
 
     // Structure: mandatory equations must be matchable.
-    let mut graph = BipartiteGraph::with_capacity(unknowns.len(), unknowns.len(), 4 * eqs.len());
-    let (mut leaves, mut row) = (Vec::new(), Vec::new());
-    for (r, _) in &eqs {
-        arena.leaves_into(*r, &mut leaves);
-        row.clear();
-        row.extend(leaves.iter().filter_map(|&l| index.get(l)));
-        graph.add_equation_from(&mut row);
-    }
+    let mut graph = incidence_graph(&arena, eqs.iter().map(|e| e.0), &index, unknowns.len());
     let m = maximum_matching(&graph, None, None);
     if m.size() < eqs.len() {
         let dm = dulmage_mendelsohn(&graph, &m, None);
@@ -269,7 +263,6 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     };
     // The incidence built above (with a row for every assumed start) is exactly what
     // causalizing would read from the residuals again.
-    debug_assert_eq!(graph.n_eqs(), residuals.len());
     let schedule = causalize_graph(
         &mut arena,
         &residuals,
