@@ -1,5 +1,5 @@
 //! MSL MultiBody examples against the Modelica Association's reference trajectories
-//! (../shared/reference/msl), every signal inside their 2e-3 tube.
+//! (`tests/data/msl`), every signal inside their 2e-3 tube.
 
 mod common;
 

@@ -7,23 +7,10 @@ use std::path::PathBuf;
 
 use multibody::Solution;
 
-/// The directory of the MSL reference trajectories: `$MSL_REFERENCE_DIR`, or
-/// `../shared/reference/msl` beside the repository, or `/work/shared/reference/msl`.
+/// The directory of the MSL reference trajectories kept in this repository
+/// (`tests/data/msl`, with their provenance and licence in its README).
 pub fn reference_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("MSL_REFERENCE_DIR") {
-        return PathBuf::from(d);
-    }
-    let beside = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/msl");
-    if beside.is_dir() {
-        return beside;
-    }
-    let fixed = PathBuf::from("/work/shared/reference/msl");
-    assert!(
-        fixed.is_dir(),
-        "the MSL reference trajectories are not found: set MSL_REFERENCE_DIR or put them in \
-         ../shared/reference/msl"
-    );
-    fixed
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/msl")
 }
 
 /// A reference file: time and named signals.
