@@ -53,7 +53,7 @@ pub mod world;
 
 pub use mechanism::{structural_simplify, structural_simplify_with};
 pub use multibody_core::codegen;
-pub use multibody_core::expr::Expr;
+pub use multibody_core::expr::{Expr, ExprStore};
 pub use multibody_core::model::{
     Component, Connector, ConnectorHandle, Parameter, PathId, Real, Signal, StateSelect, System,
     TypedComponent, VarKind, Variable,

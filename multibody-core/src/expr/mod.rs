@@ -5,30 +5,34 @@
 //! products with numeric coefficients) and offers differentiation with respect to a leaf
 //! or to time, substitution, linear solving and infix display.
 //!
-//! Two kinds of arena exist: the process-wide one behind the user-facing [`Expr`] handle
-//! (leaves are named symbols, so Rust code can write `phi * 2.0 + w`), and local arenas
-//! that the compiler builds for one model (leaves are dense variable indices). All
-//! algorithms are written once, on [`Arena`].
+//! Two kinds of arena exist: the stores behind the user-facing [`Expr`] handle, one per
+//! model (leaves are named symbols, interned once per process, so Rust code can write
+//! `phi * 2.0 + w`), and local arenas that the compiler builds for one model (leaves are
+//! dense variable indices). All algorithms are written once, on [`Arena`].
 
 mod arena;
 mod diff;
 mod display;
 mod eval;
-pub(crate) mod global;
+pub(crate) mod handle;
 mod id_index;
 mod linear_form;
 mod node_map;
 mod solve;
+pub(crate) mod store;
 mod subst;
+pub(crate) mod symbols;
 mod vector;
 
 pub use arena::Arena;
 pub use display::NameResolver;
-pub use global::{Expr, symbol_name};
+pub use handle::Expr;
 pub use id_index::IdIndex;
 pub use linear_form::LinearForm;
 pub use node_map::{NodeMap, NodeTable};
 pub use solve::LinearSolve;
+pub use store::{ExprStore, StoreGuard};
+pub use symbols::symbol_name;
 pub use vector::{Mat3, Vec3};
 
 /// Index of a node in an [`Arena`].
@@ -239,9 +243,9 @@ impl Operands {
 pub enum Node {
     /// A number (`f64::to_bits`).
     Const(u64),
-    /// An unknown: a symbol in the global arena, a variable index in a local one.
+    /// An unknown: a symbol in a store, a variable index in a local arena.
     Var(u32),
-    /// A parameter: a symbol in the global arena, a parameter index in a local one.
+    /// A parameter: a symbol in a store, a parameter index in a local arena.
     Param(u32),
     /// Time.
     Time,

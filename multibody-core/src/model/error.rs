@@ -50,6 +50,12 @@ pub enum ModelError {
         /// What is wrong, naming the frames and components.
         message: String,
     },
+    /// An expression of the model was built for another model that no longer exists.
+    #[error("{place}: uses an expression of a model that was dropped")]
+    DroppedExpression {
+        /// Where it is used (an equation's text).
+        place: String,
+    },
     /// A parameter has no value and is not computed at initialization.
     #[error("parameter `{0}` has no value")]
     ParameterWithoutValue(String),

@@ -4,7 +4,9 @@ use std::sync::Arc;
 
 use crate::hash::HashMap;
 
-use crate::expr::{Arena, Expr, Id, NameResolver, Node, NodeMap};
+use crate::expr::handle::{Resolved, SymbolNames};
+use crate::expr::store;
+use crate::expr::{Arena, Expr, ExprStore, Id, NameResolver, Node, NodeMap};
 use crate::names::closest;
 
 use super::SharedText;
@@ -18,8 +20,9 @@ use super::variable::{Parameter, VarKind, Variable};
 pub enum Origin {
     /// Declared in a component.
     Component {
-        /// The component's path (empty for the root).
-        path: Arc<str>,
+        /// The component's path (empty for the root; a thin pointer, so that every flat
+        /// equation stays small).
+        path: Arc<String>,
         /// The equation as written.
         equation: Equation,
     },
@@ -101,6 +104,9 @@ pub struct FlatSystem {
     pub derivative_rules: Vec<(u32, Id)>,
     /// Connections that close loops of overdetermined connectors (cut), by node.
     pub cuts: Vec<(String, String)>,
+    /// The stores of the model's expressions, which the equations' origins print (kept
+    /// for messages).
+    pub stores: Vec<ExprStore>,
 }
 
 /// Names of a flat system's leaves.
@@ -180,8 +186,51 @@ struct ConnectorInfo {
     connected_inside: bool,
 }
 
+/// The stores of a model's systems, locked while it is flattened (in the order of their
+/// numbers, so that two threads flattening models that share stores cannot deadlock),
+/// each with the memo of its nodes already translated.
+struct LockedStores<'g> {
+    ids: Vec<u32>,
+    arenas: Vec<std::sync::MutexGuard<'g, Arena>>,
+    memos: Vec<NodeMap>,
+}
+
+impl<'g> LockedStores<'g> {
+    fn lock(cells: &'g [ExprStore]) -> Self {
+        LockedStores {
+            ids: cells.iter().map(ExprStore::id).collect(),
+            arenas: cells.iter().map(|c| c.0.lock()).collect(),
+            memos: cells.iter().map(|_| NodeMap::new()).collect(),
+        }
+    }
+
+    /// The text of `e` (an expression of a locked store is read through its lock).
+    fn show(&self, e: Expr) -> String {
+        match e.resolve() {
+            Resolved::Node(sid, id) => match self.ids.iter().position(|&i| i == sid) {
+                Some(k) => self.arenas[k].display(id, &SymbolNames),
+                None => e.to_string(),
+            },
+            _ => e.to_string(),
+        }
+    }
+}
+
+/// The distinct stores of the systems in `order`, sorted by number.
+fn stores_of(order: &[&System]) -> Vec<ExprStore> {
+    let mut out: Vec<ExprStore> = Vec::new();
+    for s in order {
+        let st = s.store();
+        if !out.iter().any(|o| o.same(st)) {
+            out.push(st.clone());
+        }
+    }
+    out.sort_by_key(ExprStore::id);
+    out
+}
+
 struct Flattener<'g, 's> {
-    g: &'g crate::expr::global::Global,
+    stores: LockedStores<'g>,
     flat: FlatSystem,
     /// Flat index of each declared variable and parameter, by global symbol.
     var_of_sym: Vec<u32>,
@@ -194,7 +243,6 @@ struct Flattener<'g, 's> {
     class_of_name: HashMap<&'s str, u32>,
     /// Connector class names by number.
     classes: Vec<&'s str>,
-    memo: NodeMap,
     /// Declarations whose names were never interned (pushed by hand): for duplicates.
     unnamed: HashMap<SharedText, u32>,
     errors: Vec<ModelError>,
@@ -219,6 +267,20 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
 /// prefetched.
 const PREFETCH_AHEAD: usize = 4;
 
+/// Where an expression being translated comes from, in words.
+fn describe_place(origin: &Origin, stores: &LockedStores<'_>) -> String {
+    match origin {
+        Origin::Component { path, equation } => format!(
+            "{}: {} = {}",
+            if path.is_empty() { "model" } else { path },
+            stores.show(equation.lhs),
+            stores.show(equation.rhs)
+        ),
+        Origin::FixedStart { var } => format!("the start value or binding of {var}"),
+        _ => "a connection".into(),
+    }
+}
+
 fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
     while parent[x] != x {
         parent[x] = parent[parent[x]];
@@ -232,37 +294,15 @@ fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
 /// flows zero), and checks names and connector classes. The balance check is separate
 /// ([`super::balance::check_balance`]).
 pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
-    // The graph builds expressions (residues): before the global arena is locked.
-    let graph = super::connection_graph::resolve(sys)?;
-    let g = crate::expr::global::global();
-    let mut f = Flattener {
-        g: &g,
-        flat: FlatSystem {
-            name: sys.name.clone(),
-            variables: Vec::new(),
-            parameters: Vec::new(),
-            arena: Arena::new(),
-            equations: Vec::new(),
-            initial_equations: Vec::new(),
-            starts: Vec::new(),
-            parameter_values: Vec::new(),
-            derivative_rules: Vec::new(),
-            cuts: graph.cuts.clone(),
-        },
-        var_of_sym: vec![u32::MAX; g.n_symbols()],
-        param_of_sym: vec![u32::MAX; g.n_symbols()],
-        connectors: Vec::new(),
-        connector_of_path: PathIndex::with_capacity(0, 0),
-        class_of_name: HashMap::default(),
-        classes: Vec::new(),
-        memo: NodeMap::new(),
-        unnamed: HashMap::default(),
-        errors: Vec::new(),
-        path_buffer: String::new(),
+    // The graph builds expressions (residues), in the model's store: before the stores
+    // are locked.
+    let graph = {
+        let _current = sys.store().enter();
+        super::connection_graph::resolve(sys)?
     };
-    // Pass 1: declarations, into vectors sized from the whole tree first (growing them
-    // by doubling copies a large model's declarations several times over). The sizes
-    // are counted in the walk that orders the tree.
+    // The tree in the order its declarations are numbered, and the sizes of the flat
+    // vectors (growing them by doubling copies a large model's declarations several
+    // times over).
     let (mut n_variables, mut n_parameters, mut n_equations) = (0, 0, 0);
     // Connections add at most one equation per connector variable.
     let (mut n_connectors, mut n_connector_variables, mut n_connector_path_bytes) = (0, 0, 0);
@@ -282,6 +322,34 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             stack.push(sub);
         }
     }
+    let stores = stores_of(&order);
+    let n_symbols = crate::expr::symbols::bound();
+    let mut f = Flattener {
+        stores: LockedStores::lock(&stores),
+        flat: FlatSystem {
+            name: sys.name.clone(),
+            variables: Vec::new(),
+            parameters: Vec::new(),
+            arena: Arena::new(),
+            equations: Vec::new(),
+            initial_equations: Vec::new(),
+            starts: Vec::new(),
+            parameter_values: Vec::new(),
+            derivative_rules: Vec::new(),
+            cuts: graph.cuts.clone(),
+            stores: stores.clone(),
+        },
+        var_of_sym: vec![u32::MAX; n_symbols],
+        param_of_sym: vec![u32::MAX; n_symbols],
+        connectors: Vec::new(),
+        connector_of_path: PathIndex::with_capacity(0, 0),
+        class_of_name: HashMap::default(),
+        classes: Vec::new(),
+        unnamed: HashMap::default(),
+        errors: Vec::new(),
+        path_buffer: String::new(),
+    };
+    // Pass 1: declarations.
     f.flat.variables.reserve_exact(n_variables);
     f.flat.starts.reserve_exact(n_variables);
     f.flat.parameters.reserve_exact(n_parameters);
@@ -310,7 +378,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             crate::prefetch::prefetch_slice(next.path.as_bytes());
         }
         // One shared copy of the path for all of this component's equations.
-        let path: Arc<str> = Arc::from(s.path.as_str());
+        let path: Arc<String> = Arc::new(s.path.clone());
         for eq in &s.equations {
             let origin = Origin::Component {
                 path: path.clone(),
@@ -397,7 +465,7 @@ impl<'s> Flattener<'_, 's> {
         let mut conn_vars = Vec::new();
         for v in &s.variables {
             let idx = self.flat.variables.len() as u32;
-            let sym = v.symbol.or_else(|| self.g.lookup(&v.name));
+            let sym = v.symbol.or_else(|| crate::expr::symbols::lookup(&v.name));
             let duplicate = match sym {
                 Some(sym) => !claim(&mut self.var_of_sym, sym, idx),
                 None => self.unnamed.insert(v.name.clone(), idx).is_some(),
@@ -413,7 +481,7 @@ impl<'s> Flattener<'_, 's> {
         }
         for p in &s.parameters {
             let idx = self.flat.parameters.len() as u32;
-            let sym = p.symbol.or_else(|| self.g.lookup(&p.name));
+            let sym = p.symbol.or_else(|| crate::expr::symbols::lookup(&p.name));
             let duplicate = match sym {
                 Some(sym) => !claim(&mut self.param_of_sym, sym, idx),
                 None => self.unnamed.insert(p.name.clone(), idx).is_some(),
@@ -471,48 +539,58 @@ impl<'s> Flattener<'_, 's> {
     }
 
     fn translate(&mut self, e: Expr, origin: &Origin) -> Option<Id> {
-        let g = self.g;
-        let mut missing: Option<(&'static str, u32)> = None;
         let var_of_sym = &self.var_of_sym;
         let param_of_sym = &self.param_of_sym;
-        let r = self.flat.arena.import(
-            &g.arena,
-            e.id(),
-            &mut |a: &mut Arena, n: &Node| match n {
-                Node::Var(s) => match var_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
-                    Some(&i) => a.var(i),
-                    None => {
-                        missing.get_or_insert(("variable", *s));
-                        a.zero()
-                    }
-                },
-                Node::Param(s) => match param_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
-                    Some(&i) => a.param(i),
-                    None => {
-                        missing.get_or_insert(("parameter", *s));
-                        a.zero()
-                    }
-                },
-                _ => a.time(),
-            },
-            &mut self.memo,
-        );
-        if let Some((what, s)) = missing {
-            // A failed import may have cached partial results; drop the memo.
-            self.memo.clear();
-            let name = g.name(s).to_string();
-            let place = match origin {
-                Origin::Component { path, equation } => {
-                    format!(
-                        "{}: {} = {}",
-                        if path.is_empty() { "model" } else { path },
-                        g.arena.display(equation.lhs.id(), g),
-                        g.arena.display(equation.rhs.id(), g)
-                    )
+        let mut missing: Option<(&'static str, u32)> = None;
+        let mut leaf = |a: &mut Arena, n: &Node| match n {
+            Node::Var(s) => match var_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
+                Some(&i) => a.var(i),
+                None => {
+                    missing.get_or_insert(("variable", *s));
+                    a.zero()
                 }
-                Origin::FixedStart { var } => format!("the start value or binding of {var}"),
-                _ => "a connection".into(),
-            };
+            },
+            Node::Param(s) => match param_of_sym.get(*s as usize).filter(|&&i| i != u32::MAX) {
+                Some(&i) => a.param(i),
+                None => {
+                    missing.get_or_insert(("parameter", *s));
+                    a.zero()
+                }
+            },
+            _ => a.time(),
+        };
+        let arena = &mut self.flat.arena;
+        let r = match e.resolve() {
+            Resolved::Var(s) => leaf(arena, &Node::Var(s)),
+            Resolved::Param(s) => leaf(arena, &Node::Param(s)),
+            Resolved::Time => arena.time(),
+            Resolved::Node(sid, id) => match self.stores.ids.iter().position(|&i| i == sid) {
+                Some(k) => arena.import(
+                    &self.stores.arenas[k],
+                    id,
+                    &mut leaf,
+                    &mut self.stores.memos[k],
+                ),
+                // An expression of a store no system of the model holds (put into a
+                // system's fields by hand): copied out of it first.
+                None => match store::find(sid) {
+                    Some(cell) => {
+                        let (src, id) = store::export(&cell, id);
+                        arena.import(&src, id, &mut leaf, &mut NodeMap::new())
+                    }
+                    None => {
+                        let place = describe_place(origin, &self.stores);
+                        self.errors.push(ModelError::DroppedExpression { place });
+                        return None;
+                    }
+                },
+            },
+        };
+        if let Some((what, s)) = missing {
+            // A failed import may have cached partial results; drop the memos.
+            self.stores.memos.iter_mut().for_each(NodeMap::clear);
+            let name = crate::expr::symbols::name(s).to_string();
+            let place = describe_place(origin, &self.stores);
             let candidates: Vec<&str> = if what == "variable" {
                 self.flat.variables.iter().map(|v| &*v.name).collect()
             } else {

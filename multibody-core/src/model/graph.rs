@@ -88,6 +88,7 @@ impl System {
     /// Declares that the time derivative of the variable `var` is the expression `der`
     /// (no derivative unknown is created; differentiation uses the expression).
     pub fn derivative_rule(&mut self, var: Expr, der: Expr) {
+        let der = self.own(der);
         self.derivative_rules.push((var, der));
     }
 

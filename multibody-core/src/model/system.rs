@@ -1,7 +1,7 @@
 //! Systems: the tree of components a model is built from (the builder API).
 
-use crate::expr::Expr;
-use crate::expr::global::named_leaf;
+use crate::expr::handle::{into_store, named_leaf};
+use crate::expr::{Expr, ExprStore};
 
 use super::SharedText;
 use super::variable::{Parameter, VarKind, Variable};
@@ -83,6 +83,8 @@ pub struct System {
     /// `radius`, ...; booleans as 0 or 1, an unset `Option` left out), by local name:
     /// what diagnoses of mechanisms and rendering read.
     pub structural: Vec<(String, Vec<f64>)>,
+    /// Where the model's expressions live (shared by every system of one model).
+    store: ExprStore,
 }
 
 /// Joins a path and a local name with a dot (an empty side is left out).
@@ -106,7 +108,13 @@ pub fn join_path_into(path: &str, local: &str, out: &mut String) {
 impl System {
     /// A new, empty model (the root of a tree).
     pub fn new(name: impl Into<String>) -> Self {
-        Self::with_path(name.into(), String::new(), "Model".into(), None)
+        Self::with_path(
+            name.into(),
+            String::new(),
+            "Model".into(),
+            None,
+            ExprStore::for_new_model(),
+        )
     }
 
     fn with_path(
@@ -114,8 +122,10 @@ impl System {
         path: String,
         type_name: String,
         connector_class: Option<String>,
+        store: ExprStore,
     ) -> Self {
         System {
+            store,
             name,
             path,
             type_name,
@@ -137,7 +147,7 @@ impl System {
     pub fn from_component(name: &str, c: &dyn Component) -> Self {
         let mut s = System::new(name);
         s.type_name = c.type_name();
-        c.build(&mut s);
+        s.build_from(c);
         s
     }
 
@@ -163,7 +173,13 @@ impl System {
     /// (`frame.r_0[1]`, ...).
     pub fn variable_at(&mut self, local: &str, v: Variable) -> Expr {
         let (e, name, symbol) = self.declared(local, false);
-        self.variables.push(Variable { name, symbol, ..v });
+        let start = v.start.map(|x| self.own(x));
+        self.variables.push(Variable {
+            name,
+            symbol,
+            start,
+            ..v
+        });
         e
     }
 
@@ -195,7 +211,13 @@ impl System {
     /// [`System::variable_at`]).
     pub fn parameter_at(&mut self, local: &str, p: Parameter) -> Expr {
         let (e, name, symbol) = self.declared(local, true);
-        self.parameters.push(Parameter { name, symbol, ..p });
+        let value = p.value.map(|x| self.own(x));
+        self.parameters.push(Parameter {
+            name,
+            symbol,
+            value,
+            ..p
+        });
         e
     }
 
@@ -228,9 +250,10 @@ impl System {
                 .find_map(|c| find(c, full))
         }
         let full = self.full(local_path);
+        let value = self.own(value.into());
         match find(self, &full) {
             Some(v) => {
-                v.start = Some(value.into());
+                v.start = Some(value);
                 true
             }
             None => false,
@@ -239,18 +262,14 @@ impl System {
 
     /// Adds the equation `lhs = rhs`.
     pub fn equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
-        self.equations.push(Equation {
-            lhs: lhs.into(),
-            rhs: rhs.into(),
-        });
+        let (lhs, rhs) = (self.own(lhs.into()), self.own(rhs.into()));
+        self.equations.push(Equation { lhs, rhs });
     }
 
     /// Adds an initial equation `lhs = rhs`.
     pub fn initial_equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
-        self.initial_equations.push(Equation {
-            lhs: lhs.into(),
-            rhs: rhs.into(),
-        });
+        let (lhs, rhs) = (self.own(lhs.into()), self.own(rhs.into()));
+        self.initial_equations.push(Equation { lhs, rhs });
     }
 
     /// Adds a sub-component (or connector) instance named `local` and returns it.
@@ -260,8 +279,9 @@ impl System {
             self.full(local),
             c.type_name(),
             c.connector_class(),
+            self.store.clone(),
         );
-        c.build(&mut sub);
+        sub.build_from(c);
         self.subsystems.push(sub);
         self.subsystems.last_mut().expect("just pushed")
     }
@@ -277,8 +297,9 @@ impl System {
             self.full(local),
             c.type_name(),
             c.connector_class(),
+            self.store.clone(),
         );
-        c.build(&mut sub);
+        sub.build_from(c);
         self.subsystems[k] = sub;
         true
     }
@@ -295,7 +316,25 @@ impl System {
     /// Declares `extends`: builds a partial component's declarations into this same
     /// system (no new name level), as Modelica's `extends PartialCompliant`.
     pub fn extend(&mut self, c: &dyn Component) {
+        self.build_from(c);
+    }
+
+    /// Builds `c` into this system, with this system's store current (the expressions
+    /// the component builds live there).
+    fn build_from(&mut self, c: &dyn Component) {
+        let _current = self.store.enter();
         c.build(self);
+    }
+
+    /// The store of this model's expressions.
+    pub fn store(&self) -> &ExprStore {
+        &self.store
+    }
+
+    /// `e` as an expression of this model's store (copied there if it was built for
+    /// another model).
+    pub fn own(&self, e: Expr) -> Expr {
+        into_store(e, &self.store.0)
     }
 
     /// Connects two connectors given by paths relative to this system.

@@ -85,7 +85,11 @@ fn equation_texts_share_the_flat_equations_and_name_connection_variables() {
     let expected: Vec<String> = flat.equations.iter().map(|e| flat.describe(e)).collect();
     let variables = std::sync::Arc::new(std::mem::take(&mut flat.variables));
     let n = flat.equations.len();
-    let origins = FlatOrigins::new(std::mem::take(&mut flat.equations), variables);
+    let origins = FlatOrigins::new(
+        std::mem::take(&mut flat.equations),
+        variables,
+        flat.stores.clone(),
+    );
     let texts: Vec<String> = (0..n)
         .map(|k| EquationText::of(&origins, k).to_string())
         .collect();

@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::flatten::{FlatEquation, FlatSystem};
 use super::variable::Variable;
+use crate::expr::ExprStore;
 
 /// A flat system's equations and the variables their origins refer to by index,
 /// shared by the texts of all its equations (one allocation for the whole system
@@ -16,14 +17,22 @@ use super::variable::Variable;
 pub struct FlatOrigins {
     equations: Vec<FlatEquation>,
     variables: Arc<Vec<Variable>>,
+    /// The stores of the expressions the origins print.
+    _stores: Vec<ExprStore>,
 }
 
 impl FlatOrigins {
-    /// The equations of a flat system whose variables are `variables`.
-    pub fn new(equations: Vec<FlatEquation>, variables: Arc<Vec<Variable>>) -> Arc<Self> {
+    /// The equations of a flat system whose variables are `variables` and whose
+    /// expressions live in `stores`.
+    pub fn new(
+        equations: Vec<FlatEquation>,
+        variables: Arc<Vec<Variable>>,
+        stores: Vec<ExprStore>,
+    ) -> Arc<Self> {
         Arc::new(FlatOrigins {
             equations,
             variables,
+            _stores: stores,
         })
     }
 

@@ -138,7 +138,11 @@ pub fn structural_simplify_with(
     // The variables and the equations' origins move into storage shared by the texts of
     // all equations (no copy of an origin or a name per equation).
     let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
-    let texts = FlatOrigins::new(std::mem::take(&mut flat.equations), variables.clone());
+    let texts = FlatOrigins::new(
+        std::mem::take(&mut flat.equations),
+        variables.clone(),
+        flat.stores.clone(),
+    );
     let equations: Vec<(Id, EquationText)> = kept_eqs
         .iter()
         .map(|&e| (texts.equations()[e].residual, EquationText::of(&texts, e)))
