@@ -182,3 +182,28 @@ mod tests {
         assert!(NameIndex::default().names().is_empty());
     }
 }
+
+/// A number as messages write it: plainly when that is short (`0.25`, `1500`), in
+/// scientific notation otherwise (`1e-300`, `2.5e12`).
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+#[cfg(test)]
+mod number_tests {
+    use super::number;
+
+    #[test]
+    fn numbers_read_short() {
+        assert_eq!(number(0.25), "0.25");
+        assert_eq!(number(-1500.0), "-1500");
+        assert_eq!(number(1e-300), "1e-300");
+        assert_eq!(number(2.5e12), "2.5e12");
+        assert_eq!(number(f64::NAN), "NaN");
+        assert_eq!(number(0.0), "0");
+    }
+}

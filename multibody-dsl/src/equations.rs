@@ -1,7 +1,9 @@
 //! Translation of equation sections into builder calls.
 //!
 //! `lhs = rhs;` becomes `__s.equate(lhs, rhs)`, `connect(a, b);` becomes
-//! `__s.connect_handles(&a, &b)`; `let`, `if`, `match` and `for` stay Rust (structural
+//! `__s.connect_handles(&a, &b)`, `assert(condition, message);` becomes
+//! `__s.assert(condition, message)` (a `bool` of structural parameters, or an expression
+//! of tunable parameters); `let`, `if`, `match` and `for` stay Rust (structural
 //! choices made while building); anything else is an error pointing at the statement.
 //!
 //! The virtual connection graph of overdetermined connectors (Modelica's `Connections`
@@ -248,6 +250,16 @@ impl Translator {
                 let a = quote_spanned!(a.span()=> &#a);
                 let b = quote_spanned!(b.span()=> &#b);
                 Ok(quote!(__s.connect_handles(#a, #b);))
+            }
+            Expr::Call(c) if call_name(e).is_some_and(|(n, _)| n == "assert") => {
+                if c.args.len() != 2 {
+                    return Err(syn::Error::new(
+                        c.span(),
+                        "assert takes a condition and a message, `assert(m.ge(0.0), \"...\")`",
+                    ));
+                }
+                let (cond, message) = (&c.args[0], &c.args[1]);
+                Ok(quote_spanned!(c.span()=> __s.assert(#cond, #message);))
             }
             Expr::Call(_)
                 if call_name(e).is_some_and(|(n, _)| {

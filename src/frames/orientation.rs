@@ -195,11 +195,37 @@ pub fn planar_rotation_angle(e: Vec3, v1: Vec3, v2: Vec3) -> Expr {
     y.atan2(x)
 }
 
-/// The unit vector along axis `i` (1, 2 or 3).
+/// The unit vector along axis `i` (1, 2 or 3; the x axis for anything else).
 pub fn axis(i: usize) -> Vec3 {
     let mut v = [0.0; 3];
-    v[i - 1] = 1.0;
+    v[i.clamp(1, 3) - 1] = 1.0;
     Vec3::constant(v)
+}
+
+/// Whether `sequence` is a sequence of rotation axes: each 1, 2 or 3, and no two
+/// consecutive ones equal.
+pub fn valid_sequence(sequence: [usize; 3]) -> bool {
+    sequence.iter().all(|i| (1..=3).contains(i))
+        && sequence[0] != sequence[1]
+        && sequence[1] != sequence[2]
+}
+
+/// `sequence` when it is [`valid_sequence`], otherwise `[1, 2, 3]` (for components that
+/// assert their sequence is valid and go on building).
+pub fn usable_sequence(sequence: [usize; 3]) -> [usize; 3] {
+    if valid_sequence(sequence) {
+        sequence
+    } else {
+        [1, 2, 3]
+    }
+}
+
+/// The message of a component whose axis sequence `name` is not [`valid_sequence`].
+pub fn invalid_sequence(name: &str, sequence: [usize; 3]) -> String {
+    format!(
+        "the axis sequence {name} = {sequence:?} must have axes 1, 2 or 3 with no two \
+         consecutive ones equal"
+    )
 }
 
 /// The rotation by `angle` about coordinate axis `i` (1, 2 or 3).
@@ -229,14 +255,18 @@ pub fn axes_rotations(
 /// The angles of the rotation sequence `sequence` that give `r` (the inverse of
 /// [`axes_rotations`]), numerically. Of the two solutions the one whose first angle is
 /// nearer `guess_angle1` is returned; in gimbal lock the first angle is `guess_angle1`.
+///
+/// # Panics
+/// If `sequence` is not [`valid_sequence`].
 pub fn axes_rotations_angles(
     t: [[f64; 3]; 3],
     sequence: [usize; 3],
     guess_angle1: f64,
 ) -> [f64; 3] {
     assert!(
-        sequence[0] != sequence[1] && sequence[1] != sequence[2],
-        "axes_rotations_angles: consecutive axes must differ"
+        valid_sequence(sequence),
+        "axes_rotations_angles: {}",
+        invalid_sequence("sequence", sequence)
     );
     let unit = |i: usize| {
         let mut v = [0.0; 3];
@@ -293,10 +323,14 @@ pub fn axes_rotations_angles(
 /// The angles of the rotation sequence `sequence` that give the rotation matrix `t`,
 /// symbolically (the inverse of [`axes_rotations`], as [`axes_rotations_angles`]): of
 /// the two solutions, the one whose first angle is nearer `guess_angle1`.
+///
+/// # Panics
+/// If `sequence` is not [`valid_sequence`].
 pub fn axes_rotations_angles_expr(t: Mat3, sequence: [usize; 3], guess_angle1: f64) -> Vec3 {
     assert!(
-        sequence[0] != sequence[1] && sequence[1] != sequence[2],
-        "axes_rotations_angles: consecutive axes must differ"
+        valid_sequence(sequence),
+        "axes_rotations_angles_expr: {}",
+        invalid_sequence("sequence", sequence)
     );
     let e1_1 = axis(sequence[0]);
     let e2_1a = axis(sequence[1]);

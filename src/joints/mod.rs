@@ -34,11 +34,27 @@ pub use universal_spherical::*;
 
 use crate::frames::Vec3;
 
-/// The unit vector of an axis given by the user (panics on a zero axis: a structural
-/// parameter error).
-pub(crate) fn unit_axis(n: [f64; 3], what: &str) -> Vec3 {
+/// Whether `n` can be an axis: finite, and not zero.
+pub(crate) fn valid_axis(n: [f64; 3]) -> bool {
     let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    assert!(l > 1e-12, "{what}: the axis n must not be zero");
+    l.is_finite() && l > 1e-12
+}
+
+/// The message of a joint whose axis is not [`valid_axis`].
+pub(crate) fn invalid_axis(name: &str, n: [f64; 3]) -> String {
+    format!(
+        "the axis {name} = {} must be a nonzero vector",
+        crate::model::show_values(&n)
+    )
+}
+
+/// The unit vector of an axis given by the user; the z axis for an axis that is not
+/// [`valid_axis`] (which the component reports: it asserts the axis is valid).
+pub(crate) fn unit_axis(n: [f64; 3]) -> Vec3 {
+    if !valid_axis(n) {
+        return Vec3::constant([0.0, 0.0, 1.0]);
+    }
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
     Vec3::constant([n[0] / l, n[1] / l, n[2] / l])
 }
 

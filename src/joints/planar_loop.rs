@@ -1,6 +1,6 @@
 //! The cut joint of planar loops.
 
-use super::{plane_basis, unit_axis};
+use super::{invalid_axis, plane_basis, unit_axis, valid_axis};
 use crate::frames::{Vec3, relative_rotation, resolve2};
 use crate::interfaces::Frame;
 use crate::prelude::*;
@@ -29,7 +29,8 @@ component! {
         /// Constraint forces in the plane, along `ex_a` and `ey_a` \[N\].
         variable f_c: Vec3;
         equation {
-            let e = unit_axis(n, "RevolutePlanarLoopConstraint");
+            assert(valid_axis(n), invalid_axis("n", n));
+            let e = unit_axis(n);
             let (ex_a, ey_a) = plane_basis(e);
             let r_rel = relative_rotation(&frame_a.R, &frame_b.R);
             let r_rel_a = resolve2(&frame_a.R, frame_b.r_0 - frame_a.r_0);

@@ -1,6 +1,6 @@
 //! The prismatic joint.
 
-use super::{JOINT_STATE_PRIORITY, unit_axis};
+use super::{JOINT_STATE_PRIORITY, invalid_axis, unit_axis, valid_axis};
 use crate::frames::{Vec3, equality_constraint, resolve1};
 use crate::interfaces::Frame;
 use crate::prelude::*;
@@ -47,7 +47,8 @@ component! {
         /// Driving force in the direction of the axis \[N\].
         variable f: Real;
         equation {
-            let e = unit_axis(n, "Prismatic");
+            assert(valid_axis(n), invalid_axis("n", n));
+            let e = unit_axis(n);
             v = der(s);
             a = der(v);
             frame_b.r_0 = frame_a.r_0 + resolve1(&frame_a.R, e.scale(s));

@@ -1,6 +1,6 @@
 //! The revolute joint.
 
-use super::{JOINT_STATE_PRIORITY, plane_basis, unit_axis};
+use super::{JOINT_STATE_PRIORITY, invalid_axis, plane_basis, unit_axis, valid_axis};
 use crate::frames::{
     Vec3, absolute_rotation, equality_constraint, planar_rotation, resolve1, resolve2,
 };
@@ -57,7 +57,8 @@ component! {
         /// Driving torque in the direction of the axis \[N.m\].
         variable tau: Real;
         equation {
-            let e = unit_axis(n, "Revolute");
+            assert(valid_axis(n), invalid_axis("n", n));
+            let e = unit_axis(n);
             w = der(phi);
             a = der(w);
             if iscut && planar_cut {

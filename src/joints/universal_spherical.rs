@@ -8,8 +8,9 @@ use crate::interfaces::Frame;
 use crate::numeric::{cross, normalize};
 use crate::prelude::*;
 
-fn normalized(v: [f64; 3], what: &str) -> [f64; 3] {
-    normalize(v).unwrap_or_else(|| panic!("UniversalSpherical: {what} must not be zero"))
+/// The unit vector along `v` (x when `v` is zero: the component reports that).
+fn normalized(v: [f64; 3]) -> [f64; 3] {
+    normalize(v).unwrap_or([1.0, 0.0, 0.0])
 }
 
 component! {
@@ -75,8 +76,20 @@ component! {
             }
         }
         equation {
-            let e_rod_ia = normalized(rRod_ia, "rRod_ia");
-            let e2_ia = normalized(cross(n1_a, e_rod_ia), "n1_a x rRod_ia");
+            assert(
+                normalize(rRod_ia).is_some(),
+                format!("the rod rRod_ia = {} must not be zero", crate::model::show_values(&rRod_ia))
+            );
+            assert(
+                normalize(cross(n1_a, rRod_ia)).is_some(),
+                format!(
+                    "the axis n1_a = {} must be nonzero and not parallel to rRod_ia = {}",
+                    crate::model::show_values(&n1_a),
+                    crate::model::show_values(&rRod_ia)
+                )
+            );
+            let e_rod_ia = normalized(rRod_ia);
+            let e2_ia = normalized(cross(n1_a, e_rod_ia));
             let e3_ia = cross(e_rod_ia, e2_ia);
             let n1 = Vec3::constant(n1_a);
             // The rod from frame_a to frame_b, resolved in the world.

@@ -1,6 +1,9 @@
 //! Rigid bodies with mass and inertia (MSL `Parts.Body`).
 
-use crate::frames::{Mat3, Vec3, axes_rotations, quaternion_to_t, resolve1, resolve2};
+use crate::frames::{
+    Mat3, Vec3, axes_rotations, invalid_sequence, quaternion_to_t, resolve1, resolve2,
+    usable_sequence, valid_sequence,
+};
 use crate::interfaces::Frame;
 use crate::prelude::*;
 use crate::world::gravity_acceleration;
@@ -15,6 +18,23 @@ pub enum OrientationStates {
     /// A non-unit quaternion (4 states, no constraint: its norm is driven back to 1) and
     /// the angular velocity: 7 states, never singular (as Multibody.jl).
     Quaternion,
+}
+
+/// The condition that an inertia tensor is positive semi-definite (no negative
+/// principal moment): every principal minor is non-negative, with a tolerance of 1e-12
+/// relative to the trace.
+fn inertia_is_physical(i11: Expr, i22: Expr, i33: Expr, i21: Expr, i31: Expr, i32: Expr) -> Expr {
+    let tol = (i11 + i22 + i33).abs() * 1e-12;
+    let minor2 = |x: Expr, y: Expr, xy: Expr| (x * y - xy * xy).ge(-tol * tol);
+    let det = i11 * (i22 * i33 - i32 * i32) - i21 * (i21 * i33 - i32 * i31)
+        + i31 * (i21 * i32 - i22 * i31);
+    i11.ge(-tol)
+        * i22.ge(-tol)
+        * i33.ge(-tol)
+        * minor2(i11, i22, i21)
+        * minor2(i11, i33, i31)
+        * minor2(i22, i33, i32)
+        * det.ge(-tol * tol * tol)
 }
 
 component! {
@@ -75,6 +95,15 @@ component! {
         /// Scalar part of the quaternion when the body is a root (1 otherwise).
         variable q_4(start = 1.0, state_priority = 1000.0): Real;
         equation {
+            assert(
+                valid_sequence(sequence_angle_states),
+                invalid_sequence("sequence_angle_states", sequence_angle_states)
+            );
+            assert(m.ge(0.0), "the mass m must not be negative");
+            assert(
+                inertia_is_physical(I_11, I_22, I_33, I_21, I_31, I_32),
+                "the inertia (I_11, I_22, I_33, I_21, I_31, I_32) must be positive semi-definite"
+            );
             let inertia = Mat3([[I_11, I_21, I_31], [I_21, I_22, I_32], [I_31, I_32, I_33]]);
             r_0 = frame_a.r_0;
             potential_root(frame_a.R);
@@ -83,7 +112,7 @@ component! {
                     OrientationStates::Cardan => {
                         phi_d = der(phi);
                         phi_dd = der(phi_d);
-                        frame_a.R = axes_rotations(sequence_angle_states, phi.0, phi_d.0);
+                        frame_a.R = axes_rotations(usable_sequence(sequence_angle_states), phi.0, phi_d.0);
                         q_v = Vec3::zero();
                         q_4 = 1.0;
                     }

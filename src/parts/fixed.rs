@@ -1,7 +1,8 @@
 //! Frames fixed in the world, and rigid translations and rotations between two frames.
 
 use crate::frames::{
-    Orientation, Vec3, absolute_rotation, null_rotation, planar_rotation, resolve1,
+    Orientation, Vec3, absolute_rotation, invalid_sequence, null_rotation, planar_rotation,
+    resolve1, usable_sequence, valid_sequence,
 };
 use crate::interfaces::Frame;
 use crate::prelude::*;
@@ -86,7 +87,13 @@ component! {
         /// Second frame.
         connector frame_b: Frame;
         equation {
-            let r_rel: Orientation = fixed_rotation(rotation_type, n, angle, n_x, n_y, sequence, angles);
+            if rotation_type == RotationType::RotationAxis {
+                assert(crate::joints::valid_axis(n), crate::joints::invalid_axis("n", n));
+            }
+            if rotation_type == RotationType::PlanarRotationSequence {
+                assert(valid_sequence(sequence), invalid_sequence("sequence", sequence));
+            }
+            let r_rel: Orientation = fixed_rotation(rotation_type, n, angle, n_x, n_y, usable_sequence(sequence), angles);
             let r_inv = crate::frames::inverse_rotation(&r_rel);
             branch(frame_a.R, frame_b.R);
             frame_b.r_0 = frame_a.r_0 + resolve1(&frame_a.R, r);
@@ -115,15 +122,11 @@ fn fixed_rotation(
 ) -> Orientation {
     let zero = Expr::constant(0.0);
     match kind {
-        RotationType::RotationAxis => {
-            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            assert!(l > 0.0, "FixedRotation: the axis n must not be zero");
-            planar_rotation(
-                Vec3::constant([n[0] / l, n[1] / l, n[2] / l]),
-                Expr::constant(angle_deg.to_radians()),
-                zero,
-            )
-        }
+        RotationType::RotationAxis => planar_rotation(
+            crate::joints::unit_axis(n),
+            Expr::constant(angle_deg.to_radians()),
+            zero,
+        ),
         RotationType::TwoAxesVectors => crate::frames::from_nxy(n_x, n_y),
         RotationType::PlanarRotationSequence => crate::frames::axes_rotations(
             sequence,

@@ -44,7 +44,6 @@ pub fn box_mass_properties(
     density: f64,
 ) -> MassProperties {
     let l = norm(r);
-    assert!(l > 0.0, "BodyBox: r must not be zero");
     let (w, h, wi, hi) = (width, height, inner_width, inner_height);
     let mo = density * l * w * h;
     let mi = density * l * wi * hi;
@@ -69,7 +68,6 @@ pub fn cylinder_mass_properties(
     density: f64,
 ) -> MassProperties {
     let l = norm(r);
-    assert!(l > 0.0, "BodyCylinder: r must not be zero");
     let (ro, ri) = (diameter / 2.0, inner_diameter / 2.0);
     let mo = density * std::f64::consts::PI * l * ro * ro;
     let mi = density * std::f64::consts::PI * l * ri * ri;
@@ -182,6 +180,17 @@ component! {
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {
+            assert(norm(r) > 0.0, "the box's length |r| must not be zero");
+            let (w, h) = self.outer_size();
+            assert(
+                w > 0.0 && h > 0.0,
+                format!("the box's width {w} and height {h} must be positive")
+            );
+            assert(
+                inner_width >= 0.0 && inner_width < w && self.inner_height.unwrap_or(inner_width) < h,
+                "the inner box must be smaller than the box"
+            );
+            assert(density > 0.0, format!("the density {density} must be positive"));
             connect(frame_a, translation.frame_a);
             connect(frame_b, translation.frame_b);
             connect(frame_a, body.frame_a);
@@ -190,10 +199,15 @@ component! {
 }
 
 impl BodyBox {
+    /// Width and height (their defaults: `|r|/20` and the width).
+    fn outer_size(&self) -> (f64, f64) {
+        let w = self.width.unwrap_or(norm(self.r) / 20.0);
+        (w, self.height.unwrap_or(w))
+    }
+
     /// The box's mass, centre of mass and inertia.
     pub fn mass_properties(&self) -> MassProperties {
-        let w = self.width.unwrap_or(norm(self.r) / 20.0);
-        let h = self.height.unwrap_or(w);
+        let (w, h) = self.outer_size();
         box_mass_properties(
             self.r,
             w,
@@ -232,6 +246,14 @@ component! {
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {
+            assert(norm(r) > 0.0, "the cylinder's length |r| must not be zero");
+            let d = self.diameter.unwrap_or(norm(r) / 20.0);
+            assert(d > 0.0, format!("the diameter {d} must be positive"));
+            assert(
+                inner_diameter >= 0.0 && inner_diameter < d,
+                format!("the inner diameter {inner_diameter} must be smaller than the diameter {d}")
+            );
+            assert(density > 0.0, format!("the density {density} must be positive"));
             connect(frame_a, translation.frame_a);
             connect(frame_b, translation.frame_b);
             connect(frame_a, body.frame_a);

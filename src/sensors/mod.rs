@@ -3,7 +3,8 @@
 
 use crate::blocks::{RealOutput, RealOutput3};
 use crate::frames::{
-    Vec3, axes_rotations_angles_expr, relative_rotation, resolve_relative, resolve1, resolve2,
+    Vec3, axes_rotations_angles_expr, invalid_sequence, relative_rotation, resolve_relative,
+    resolve1, resolve2, usable_sequence, valid_sequence,
 };
 use crate::interfaces::Frame;
 use crate::prelude::*;
@@ -139,7 +140,8 @@ component! {
         connector angles: RealOutput3;
         equation {
             let r_rel = relative_rotation(&frame_a.R, &frame_b.R);
-            angles = axes_rotations_angles_expr(r_rel.T, sequence, guess_angle1);
+            assert(valid_sequence(sequence), invalid_sequence("sequence", sequence));
+            angles = axes_rotations_angles_expr(r_rel.T, usable_sequence(sequence), guess_angle1);
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
             frame_b.f = Vec3::zero();

@@ -50,6 +50,28 @@ pub enum ModelError {
         /// What is wrong, naming the frames and components.
         message: String,
     },
+    /// A component was built with structural parameters it does not accept (a zero
+    /// axis, a NaN length, an axis sequence with a repeated axis).
+    #[error("{type_name} `{component}`: {message}")]
+    InvalidComponent {
+        /// The component's path.
+        component: String,
+        /// Its type.
+        type_name: String,
+        /// What is wrong, naming the parameter and its value.
+        message: String,
+    },
+    /// An assertion of a component refers to variables: only conditions on parameters
+    /// are supported.
+    #[error(
+        "{component}: the assertion `{condition}` refers to variables; only conditions on parameters are checked"
+    )]
+    AssertionOnVariables {
+        /// The component's path.
+        component: String,
+        /// The condition as written.
+        condition: String,
+    },
     /// An expression of the model was built for another model that no longer exists.
     #[error("{place}: uses an expression of a model that was dropped")]
     DroppedExpression {

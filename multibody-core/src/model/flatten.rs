@@ -50,6 +50,13 @@ pub enum Origin {
     /// branch or connection, a loop closure residue, a root's equations). Boxed: rare,
     /// and it would make every equation's origin twice as large.
     Graph(Box<GraphOrigin>),
+    /// A component's assertion on its parameters (see [`System::assert`]).
+    Assertion {
+        /// The component's path (empty for the root).
+        path: Arc<String>,
+        /// The condition as written.
+        condition: Expr,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -80,6 +87,20 @@ pub struct FlatEquation {
     pub lhs_var: Option<u32>,
 }
 
+/// A condition on parameters that must hold (see [`System::assert`]).
+#[derive(Clone, Debug)]
+pub struct FlatAssertion {
+    /// The condition in the flat system's arena (parameters only), nonzero when it
+    /// holds.
+    pub condition: Id,
+    /// What is wrong when it does not hold.
+    pub message: String,
+    /// The path of the component that asserts it (empty for the model itself).
+    pub component: String,
+    /// The component's type.
+    pub type_name: String,
+}
+
 /// A flattened model: numbered variables and parameters, and scalar equations in a local
 /// arena where `Var(i)` is `variables[i]` and `Param(j)` is `parameters[j]`.
 #[derive(Clone, Debug)]
@@ -107,6 +128,8 @@ pub struct FlatSystem {
     /// The stores of the model's expressions, which the equations' origins print (kept
     /// for messages).
     pub stores: Vec<ExprStore>,
+    /// Conditions on parameters, checked when a problem sets their values.
+    pub assertions: Vec<FlatAssertion>,
 }
 
 /// Names of a flat system's leaves.
@@ -172,6 +195,10 @@ impl FlatSystem {
                 format!("unconnected flow: {} = 0", name(*flow))
             }
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
+            Origin::Assertion { path, condition } => {
+                let at = if path.is_empty() { "model" } else { path };
+                format!("{at}: assert({condition})")
+            }
             Origin::Graph(g) => {
                 format!("{}: {} = {}", g.text, g.equation.lhs, g.equation.rhs)
             }
@@ -277,6 +304,11 @@ fn describe_place(origin: &Origin, stores: &LockedStores<'_>) -> String {
             stores.show(equation.rhs)
         ),
         Origin::FixedStart { var } => format!("the start value or binding of {var}"),
+        Origin::Assertion { path, condition } => format!(
+            "{}: assert({})",
+            if path.is_empty() { "model" } else { path },
+            stores.show(*condition)
+        ),
         _ => "a connection".into(),
     }
 }
@@ -338,6 +370,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             derivative_rules: Vec::new(),
             cuts: graph.cuts.clone(),
             stores: stores.clone(),
+            assertions: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -349,6 +382,18 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         errors: Vec::new(),
         path_buffer: String::new(),
     };
+    // Components built with structural parameters they reject.
+    if let Some(s) = order.iter().find(|s| !s.invalid.is_empty()) {
+        return Err(ModelError::InvalidComponent {
+            component: if s.path.is_empty() {
+                s.name.clone()
+            } else {
+                s.path.clone()
+            },
+            type_name: s.type_name.clone(),
+            message: s.invalid.join("; "),
+        });
+    }
     // Pass 1: declarations.
     f.flat.variables.reserve_exact(n_variables);
     f.flat.starts.reserve_exact(n_variables);
@@ -404,6 +449,37 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                     lhs_var,
                 });
             }
+        }
+        for a in &s.assertions {
+            let origin = Origin::Assertion {
+                path: path.clone(),
+                condition: a.condition,
+            };
+            let Some(condition) = f.translate(a.condition, &origin) else {
+                continue;
+            };
+            let arena = &f.flat.arena;
+            if arena
+                .leaves(condition)
+                .iter()
+                .any(|&l| !matches!(arena.node(l), Node::Param(_)))
+            {
+                f.errors.push(ModelError::AssertionOnVariables {
+                    component: if s.path.is_empty() {
+                        "model".into()
+                    } else {
+                        s.path.clone()
+                    },
+                    condition: f.stores.show(a.condition),
+                });
+                continue;
+            }
+            f.flat.assertions.push(FlatAssertion {
+                condition,
+                message: a.message.clone(),
+                component: s.path.clone(),
+                type_name: s.type_name.clone(),
+            });
         }
         for (var, der) in &s.derivative_rules {
             let origin = Origin::Component {

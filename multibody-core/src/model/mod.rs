@@ -15,10 +15,15 @@ mod variable;
 
 pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
-pub use flatten::{FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten};
+pub use flatten::{
+    FlatAssertion, FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten,
+};
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
-pub use system::{Component, Connection, Equation, StructuralValue, System, join_path};
+pub use system::{
+    Assertion, Component, Condition, Connection, Equation, StructuralValue, System, join_path,
+    show_values,
+};
 pub use text::{EquationText, FlatOrigins};
 pub use typed::{
     Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,

@@ -83,8 +83,46 @@ pub struct System {
     /// `radius`, ...; booleans as 0 or 1, an unset `Option` left out), by local name:
     /// what diagnoses of mechanisms and rendering read.
     pub structural: Vec<(String, Vec<f64>)>,
+    /// Conditions on the component's tunable parameters, checked when a problem's
+    /// parameter values are known (Modelica's `assert` on parameters).
+    pub assertions: Vec<Assertion>,
+    /// Conditions on its structural parameters that failed while it was built: each a
+    /// message naming the parameter and its value.
+    pub invalid: Vec<String>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
+}
+
+/// A condition on tunable parameters that must hold (see [`System::assert`]).
+#[derive(Clone, Debug)]
+pub struct Assertion {
+    /// Nonzero when the condition holds (a comparison such as `m.ge(0.0)`).
+    pub condition: Expr,
+    /// What is wrong when it does not hold, e.g. "the mass m must not be negative".
+    pub message: String,
+}
+
+/// The condition of [`System::assert`]: known while the component is built (a Rust
+/// `bool` on structural parameters), or an expression of tunable parameters, known when
+/// a problem sets their values.
+#[derive(Clone, Copy, Debug)]
+pub enum Condition {
+    /// Known now.
+    Now(bool),
+    /// An expression of parameters, nonzero when the condition holds.
+    Parameters(Expr),
+}
+
+impl From<bool> for Condition {
+    fn from(b: bool) -> Self {
+        Condition::Now(b)
+    }
+}
+
+impl From<Expr> for Condition {
+    fn from(e: Expr) -> Self {
+        Condition::Parameters(e)
+    }
 }
 
 /// Joins a path and a local name with a dot (an empty side is left out).
@@ -137,6 +175,8 @@ impl System {
             subsystems: Vec::new(),
             connections: Vec::new(),
             derivative_rules: Vec::new(),
+            assertions: Vec::new(),
+            invalid: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -272,6 +312,22 @@ impl System {
         self.initial_equations.push(Equation { lhs, rhs });
     }
 
+    /// Requires `condition` (Modelica's `assert(condition, message)` on parameters): a
+    /// `bool` on structural parameters is checked now, and compiling the model fails
+    /// with `message` and this component's path when it is false; an expression of
+    /// tunable parameters is checked when a problem sets their values.
+    pub fn assert(&mut self, condition: impl Into<Condition>, message: impl Into<String>) {
+        match condition.into() {
+            Condition::Now(true) => {}
+            Condition::Now(false) => self.invalid.push(message.into()),
+            Condition::Parameters(e) => {
+                let condition = self.own(e);
+                let message = message.into();
+                self.assertions.push(Assertion { condition, message });
+            }
+        }
+    }
+
     /// Adds a sub-component (or connector) instance named `local` and returns it.
     pub fn add(&mut self, local: &str, c: &dyn Component) -> &mut System {
         let mut sub = System::with_path(
@@ -356,8 +412,16 @@ impl System {
 
     /// Records a structural parameter's value (see [`System::structural`]); `None`
     /// records nothing.
+    /// A value that is not finite (NaN or infinite) makes the component invalid: the
+    /// model does not compile, and the error names the parameter.
     pub fn record_structural(&mut self, name: &str, value: Option<Vec<f64>>) {
         if let Some(v) = value {
+            if v.iter().any(|x| !x.is_finite()) {
+                self.invalid.push(format!(
+                    "structural parameter `{name}` = {} is not finite",
+                    show_values(&v)
+                ));
+            }
             self.structural.push((name.to_string(), v));
         }
     }
@@ -373,6 +437,17 @@ impl System {
     /// Whether this system is a connector.
     pub fn is_connector(&self) -> bool {
         self.connector_class.is_some()
+    }
+}
+
+/// Numbers as written in messages: one alone, several in brackets.
+pub fn show_values(v: &[f64]) -> String {
+    match v {
+        [x] => x.to_string(),
+        _ => format!(
+            "[{}]",
+            v.iter().map(f64::to_string).collect::<Vec<_>>().join(", ")
+        ),
     }
 }
 

@@ -65,7 +65,7 @@ pub struct Panel {
 #[derive(Clone, Debug)]
 pub struct PlotOptions {
     /// Width of the whole figure in pixels, shared by the panels of a row.
-    /// Default 1200.
+    /// Default 1200; a figure has at most 32768 pixels a side and 2^26 in all.
     pub width: u32,
     /// Height of one row of panels in pixels; the figure is
     /// `height * rows` pixels tall. Default 500.
@@ -137,6 +137,9 @@ const TICK_SIZE: u32 = 15;
 const LEGEND_SIZE: u32 = 16;
 const X_LABEL_AREA: u32 = 58;
 const TICK_LEN: u32 = 5;
+/// Largest figure in pixels (2^26, 192 MiB of RGB), as for animations.
+const MAX_PIXELS: u64 = 1 << 26;
+
 const X_TICKS: usize = 8;
 const Y_TICKS: usize = 8;
 
@@ -254,6 +257,12 @@ pub(crate) fn render_to_buffer(
     let (w, h) = figure_size(panels.len(), options);
     if w == 0 || h == 0 {
         return Err(PlotError::Backend(format!("figure size {w}x{h} is empty")));
+    }
+    if u64::from(w) * u64::from(h) > MAX_PIXELS || w > 32_768 || h > 32_768 {
+        return Err(PlotError::Backend(format!(
+            "figure size {w}x{h} is too large: at most 32768 pixels a side and 2^26 \
+             pixels in all"
+        )));
     }
     register_fonts();
     let mut buffer = vec![255u8; w as usize * h as usize * 3];

@@ -378,6 +378,7 @@ pub fn structural_simplify_with(
         parameters,
         parameter_values,
         arena,
+        assertions,
         ..
     } = flat;
     Ok(SimplifiedSystem {
@@ -387,6 +388,7 @@ pub fn structural_simplify_with(
         parameters,
         parameter_index: std::sync::OnceLock::new(),
         evaluated_parameters,
+        assertions,
         parameter_values,
         starts,
         replaced: aliases.replaced,

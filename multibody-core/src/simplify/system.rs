@@ -184,6 +184,8 @@ pub struct SimplifiedSystem {
     pub(crate) parameter_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
     /// Per parameter: whether its value was folded in at compile time.
     pub(crate) evaluated_parameters: Vec<bool>,
+    /// Conditions on parameters, checked for each problem's values.
+    pub(crate) assertions: Vec<crate::model::FlatAssertion>,
     /// Parameter bindings (expressions of other parameters) per parameter.
     pub(crate) parameter_values: Vec<Option<Id>>,
     /// Start values per flat variable (expressions of parameters).

@@ -67,6 +67,21 @@ pub enum InitError {
         /// Names close to it.
         suggestions: Vec<String>,
     },
+    /// A component's condition on its parameters does not hold for the problem's
+    /// values.
+    #[error("model `{model}`: {type_name} `{component}`: {message} ({values})")]
+    AssertionFailed {
+        /// Model name.
+        model: String,
+        /// The component's path.
+        component: String,
+        /// Its type.
+        type_name: String,
+        /// What is wrong.
+        message: String,
+        /// The parameters of the condition with their values (`m = -1`).
+        values: String,
+    },
     /// A parameter value or start value could not be evaluated.
     #[error("model `{model}`: {message}")]
     BadValue {
@@ -151,13 +166,14 @@ pub(crate) fn suggest(s: &[String]) -> String {
 
 /// The integrator failed.
 #[derive(Debug, Clone, thiserror::Error, PartialEq)]
-#[error("model `{model}`: the solver failed at t = {t}: {message}")]
+#[error("model `{model}`: the solver failed at t = {}: {message}", crate::names::number(*.t))]
 pub struct SolveError {
     /// Model name.
     pub model: String,
     /// The time reached.
     pub t: f64,
-    /// IDA's return flag (`IDA_CONV_FAIL`, ...), or `MAX_STEPS`.
+    /// IDA's return flag (`IDA_CONV_FAIL`, ...), `MAX_POINTS` (more reported points
+    /// than allowed) or `BAD_OPTION` (an option that cannot be used).
     pub flag: String,
     /// What went wrong, in words.
     pub message: String,
@@ -191,6 +207,19 @@ pub enum SolutionError {
         t0: f64,
         /// End of the interval.
         t1: f64,
+    },
+    /// A variable's value is not a number (NaN) or infinite at a time: the model
+    /// computes nothing there (a square root of a negative number, a division by zero).
+    #[error("`{name}` is {value} at t = {}{}", crate::names::number(*.t), reason.as_deref().map(|r| format!(" ({r})")).unwrap_or_default())]
+    NotFinite {
+        /// The variable.
+        name: String,
+        /// The time.
+        t: f64,
+        /// The value (NaN or infinite).
+        value: f64,
+        /// What failed in the computation, when known.
+        reason: Option<String>,
     },
     /// Writing a file failed.
     #[error("cannot write `{path}`: {message}")]

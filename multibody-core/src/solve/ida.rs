@@ -424,7 +424,7 @@ fn describe_flag(
     };
     match flag {
         sys::IDA_TOO_MUCH_WORK => format!(
-            "too many steps (max_steps = {}) before reaching the next output",
+            "more than SolverOptions::max_steps = {} steps before the next reported point",
             settings.max_steps
         ),
         sys::IDA_TOO_MUCH_ACC => "the requested accuracy could not be reached (rtol/atol too small)".into(),
@@ -1355,7 +1355,11 @@ mod tests {
         )
         .unwrap_err();
         assert_eq!(err.flag, "IDA_TOO_MUCH_WORK");
-        assert!(err.message.contains("too many steps"), "{err}");
+        assert!(
+            err.message
+                .contains("more than SolverOptions::max_steps = 5 steps"),
+            "{err}"
+        );
         assert!(err.t > 0.0 && err.t < 100.0);
 
         let err = integrate(

@@ -1,5 +1,7 @@
 //! Options of the integrator.
 
+use crate::names::number;
+
 /// Which linear solver IDA's Newton iteration uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum LinearSolverChoice {
@@ -33,9 +35,11 @@ pub struct SolverOptions {
     /// Times at which to report the solution (default: none, every internal step is
     /// reported; the final time is always reported).
     pub output_times: Option<Vec<f64>>,
-    /// Largest number of reported points, and of internal steps between two output
-    /// times (default 500 000).
+    /// Largest number of internal steps between two reported points (default
+    /// 500 000).
     pub max_steps: usize,
+    /// Largest number of reported points (default 500 000).
+    pub max_points: usize,
     /// Leave algebraic unknowns out of the local error test, as `IDASetSuppressAlg`
     /// (default true).
     pub suppress_alg: bool,
@@ -65,6 +69,7 @@ impl Default for SolverOptions {
             initial_step: None,
             output_times: None,
             max_steps: 500_000,
+            max_points: 500_000,
             suppress_alg: true,
             linear_solver: LinearSolverChoice::Auto,
             project_outputs: true,
@@ -74,6 +79,73 @@ impl Default for SolverOptions {
 }
 
 impl SolverOptions {
+    /// Checks the options for a problem over `tspan`: the message of the first one that
+    /// cannot be used.
+    pub(crate) fn check(&self, tspan: (f64, f64)) -> Result<(), String> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!(
+                    "SolverOptions::{name} = {} must be a positive, finite number",
+                    number(v)
+                ))
+            }
+        };
+        for (name, v) in [("rtol", self.rtol), ("atol", self.atol)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(format!(
+                    "SolverOptions::{name} = {} must be a finite number, zero or positive",
+                    number(v)
+                ));
+            }
+        }
+        if self.rtol == 0.0 && self.atol == 0.0 {
+            return Err(
+                "SolverOptions::rtol and atol are both zero: at least one must be \
+                        positive"
+                    .into(),
+            );
+        }
+        if self.rtol > 0.0 && self.rtol < 1e-15 {
+            return Err(format!(
+                "SolverOptions::rtol = {} is below the precision of floating-point numbers \
+                 (at least 1e-15)",
+                number(self.rtol)
+            ));
+        }
+        if let Some(h) = self.max_step {
+            positive("max_step", h)?;
+        }
+        if let Some(h) = self.initial_step {
+            positive("initial_step", h)?;
+        }
+        if self.max_steps == 0 {
+            return Err("SolverOptions::max_steps must be at least 1".into());
+        }
+        if self.max_points < 2 {
+            return Err(
+                "SolverOptions::max_points must be at least 2 (the initial and the \
+                        final time)"
+                    .into(),
+            );
+        }
+        if let Some(times) = &self.output_times
+            && let Some(&t) = times
+                .iter()
+                .find(|&&t| !(t.is_finite() && t >= tspan.0 && t <= tspan.1))
+        {
+            return Err(format!(
+                "the output time {} in SolverOptions::output_times is not in the time span \
+                 [{}, {}]",
+                number(t),
+                number(tspan.0),
+                number(tspan.1)
+            ));
+        }
+        Ok(())
+    }
+
     /// Output times `t0, t0 + dt, ...` up to `t1` (inclusive within rounding).
     pub fn with_output_interval(mut self, t0: f64, t1: f64, dt: f64) -> Self {
         let n = ((t1 - t0) / dt + 1e-9).floor() as usize;

@@ -7,7 +7,7 @@ use crate::Error;
 use crate::codegen::dae::{CompiledDae, InputLayout};
 use crate::codegen::{ExtendedJacobian, ExtendedWorkspace, JacobianWorkspace, Workspace};
 use crate::expr::{Arena, Id, Node};
-use crate::names::closest;
+use crate::names::{closest, number};
 use crate::simplify::SimplifiedSystem;
 
 use super::error::{InitError, SolveError};
@@ -62,6 +62,36 @@ pub(crate) fn parameter_values(
     )
 }
 
+/// Checks the components' conditions on the parameter values `params`.
+#[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
+fn check_assertions(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError> {
+    for a in &sys.assertions {
+        if eval_with_params(&sys.arena, a.condition, params) != Some(0.0) {
+            continue;
+        }
+        let values: Vec<String> = sys
+            .arena
+            .leaves(a.condition)
+            .into_iter()
+            .filter_map(|l| match sys.arena.node(l) {
+                Node::Param(j) => Some(format!(
+                    "{} = {}",
+                    sys.parameters[*j as usize].name, params[*j as usize]
+                )),
+                _ => None,
+            })
+            .collect();
+        return Err(InitError::AssertionFailed {
+            model: sys.name.clone(),
+            component: a.component.clone(),
+            type_name: a.type_name.clone(),
+            message: a.message.clone(),
+            values: values.join(", "),
+        });
+    }
+    Ok(())
+}
+
 fn eval_with_params(arena: &Arena, e: Id, params: &[f64]) -> Option<f64> {
     arena.eval(e, &|n: &Node| match n {
         Node::Param(k) => params.get(*k as usize).copied(),
@@ -95,7 +125,24 @@ impl<'a> DaeProblem<'a> {
                 model: sys.name.clone(),
                 message: format!(
                     "the time span ({}, {}) must be finite and increasing",
-                    tspan.0, tspan.1
+                    number(tspan.0),
+                    number(tspan.1)
+                ),
+            }
+            .into());
+        }
+        // Shorter spans than this are lost in the rounding of the times themselves (or
+        // underflow inside the integrator's step-size estimates).
+        let shortest = (100.0 * f64::EPSILON * tspan.0.abs().max(tspan.1.abs())).max(1e-200);
+        if tspan.1 - tspan.0 < shortest {
+            return Err(InitError::BadValue {
+                model: sys.name.clone(),
+                message: format!(
+                    "the time span ({}, {}) is too short to integrate: the end must exceed \
+                     the start by at least {}",
+                    number(tspan.0),
+                    number(tspan.1),
+                    number(shortest)
                 ),
             }
             .into());
@@ -126,16 +173,28 @@ impl<'a> DaeProblem<'a> {
         };
         let mut param_overrides = HashMap::default();
         let mut start_overrides = HashMap::default();
+        let bad = |message: String| -> Error {
+            InitError::BadValue {
+                model: sys.name.clone(),
+                message,
+            }
+            .into()
+        };
+        let mut given: HashMap<&str, ()> = HashMap::default();
         for &(name, v) in values {
+            if given.insert(name, ()).is_some() {
+                return Err(bad(format!("`{name}` is given twice in the values")));
+            }
+            if !v.is_finite() {
+                return Err(bad(format!(
+                    "the value {v} given for `{name}` is not finite"
+                )));
+            }
             if let Some(&j) = param_index.get(name) {
                 if sys.evaluated_parameters[j] {
-                    return Err(InitError::BadValue {
-                        model: sys.name.clone(),
-                        message: format!(
-                            "parameter `{name}` was evaluated at compile time (declared `evaluate`, or SimplifyOptions::evaluate_parameters); simplify the model again to change it"
-                        ),
-                    }
-                    .into());
+                    return Err(bad(format!(
+                        "parameter `{name}` was evaluated at compile time (declared `evaluate`, or SimplifyOptions::evaluate_parameters); simplify the model again to change it"
+                    )));
                 }
                 param_overrides.insert(j, v);
             } else if let Some(&i) = var_index.get(name) {
@@ -145,13 +204,34 @@ impl<'a> DaeProblem<'a> {
             }
         }
         let mut guess_values = vec![None; sys.variables.len()];
+        let mut guessed: HashMap<&str, ()> = HashMap::default();
         for &(name, v) in guesses {
+            if guessed.insert(name, ()).is_some() {
+                return Err(bad(format!("`{name}` is given twice in the guesses")));
+            }
+            if !v.is_finite() {
+                return Err(bad(format!(
+                    "the guess {v} given for `{name}` is not finite"
+                )));
+            }
             match var_index.get(name) {
                 Some(&i) => guess_values[i] = Some(v),
+                None if param_index.contains_key(name) => {
+                    return Err(bad(format!(
+                        "`{name}` is a parameter: give its value with the values, not as a guess"
+                    )));
+                }
                 None => return Err(unknown(name).into()),
             }
         }
         let params = parameter_values(sys, &param_overrides)?;
+        if let Some(j) = params.iter().position(|p| !p.is_finite()) {
+            return Err(bad(format!(
+                "parameter `{}` evaluates to {}",
+                sys.parameters[j].name, params[j]
+            )));
+        }
+        check_assertions(sys, &params)?;
         let mut starts = Vec::with_capacity(sys.variables.len());
         let mut fixed = Vec::with_capacity(sys.variables.len());
         for (i, v) in sys.variables.iter().enumerate() {
@@ -161,15 +241,21 @@ impl<'a> DaeProblem<'a> {
                 continue;
             }
             let s = match sys.starts[i] {
-                Some(e) => Some(eval_with_params(&sys.arena, e, &params).ok_or_else(|| {
-                    InitError::BadValue {
-                        model: sys.name.clone(),
-                        message: format!(
+                Some(e) => {
+                    let value = eval_with_params(&sys.arena, e, &params).ok_or_else(|| {
+                        bad(format!(
                             "the start value of `{}` is not an expression of parameters",
                             v.name
-                        ),
+                        ))
+                    })?;
+                    if !value.is_finite() {
+                        return Err(bad(format!(
+                            "the start value of `{}` evaluates to {value}",
+                            v.name
+                        )));
                     }
-                })?),
+                    Some(value)
+                }
                 None => None,
             };
             starts.push(s);
@@ -250,6 +336,15 @@ impl<'a> DaeProblem<'a> {
     /// Integrates with IDA.
     pub fn solve(&self, options: &SolverOptions) -> Result<Solution, Error> {
         let sys = self.sys;
+        if let Err(message) = options.check(self.tspan) {
+            return Err(SolveError {
+                model: sys.name.clone(),
+                t: self.tspan.0,
+                flag: "BAD_OPTION".into(),
+                message,
+            }
+            .into());
+        }
         let specialized;
         let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
             specialized = sys.compiled.specialize(&self.params);
@@ -303,7 +398,7 @@ impl<'a> DaeProblem<'a> {
         let mut t_out = Vec::new();
         let mut u_out = Vec::new();
         let mut up_out = Vec::new();
-        let mut steps_left = options.max_steps;
+        let mut steps_left = options.max_points;
         let mut exceeded = None;
         let result = ida::integrate(
             &mut f,
@@ -328,10 +423,10 @@ impl<'a> DaeProblem<'a> {
             return Err(SolveError {
                 model: sys.name.clone(),
                 t,
-                flag: "MAX_STEPS".into(),
+                flag: "MAX_POINTS".into(),
                 message: format!(
-                    "more than {} output points (SolverOptions::max_steps)",
-                    options.max_steps
+                    "more than {} reported points (SolverOptions::max_points)",
+                    options.max_points
                 ),
             }
             .into());

@@ -91,10 +91,13 @@ impl Solution {
         &self.init
     }
 
-    /// The unknowns `u` at reported point `k`.
-    pub fn unknowns_at(&self, k: usize) -> &[f64] {
+    /// The unknowns `u` at reported point `k` (`None` past the last point).
+    pub fn unknowns_at(&self, k: usize) -> Option<&[f64]> {
         let n = self.layout.n;
-        &self.u[k * n..(k + 1) * n]
+        if k >= self.t.len() {
+            return None;
+        }
+        self.u.get(k * n..(k + 1) * n)
     }
 
     /// The value of the tunable parameter `name` in this solution: its default, the
@@ -118,6 +121,7 @@ impl Solution {
             })
     }
 
+    /// Evaluates the observed function at `t`: `Err` with the reason when it fails.
     fn evaluate(
         &self,
         t: f64,
@@ -126,7 +130,7 @@ impl Solution {
         ws: &mut crate::codegen::Workspace,
         inputs: &mut [f64],
         out: &mut [f64],
-    ) {
+    ) -> Result<(), String> {
         let n = self.layout.n;
         inputs[InputLayout::TIME] = t;
         if n > 0 {
@@ -135,9 +139,36 @@ impl Solution {
             let up0 = self.layout.up(0);
             inputs[up0..up0 + n].copy_from_slice(up);
         }
-        if self.observed.eval(inputs, ws, out).is_err() {
+        self.observed.eval(inputs, ws, out).map_err(|e| {
             out.iter_mut().for_each(|v| *v = f64::NAN);
+            e.message
+        })
+    }
+
+    /// Outputs `idx` of an evaluation at `t` (`result` of [`Self::evaluate`]) appended
+    /// to `series`; an error names the first that is not finite.
+    fn collect(
+        &self,
+        idx: &[usize],
+        names: &[&str],
+        t: f64,
+        out: &[f64],
+        result: Result<(), String>,
+        series: &mut [Vec<f64>],
+    ) -> Result<(), SolutionError> {
+        for (k, (s, &i)) in series.iter_mut().zip(idx).enumerate() {
+            let v = out[i];
+            if !v.is_finite() {
+                return Err(SolutionError::NotFinite {
+                    name: names[k].to_string(),
+                    t,
+                    value: v,
+                    reason: result.err(),
+                });
+            }
+            s.push(v);
         }
+        Ok(())
     }
 
     fn inputs(&self) -> Vec<f64> {
@@ -167,10 +198,8 @@ impl Solution {
         let mut series = vec![Vec::with_capacity(self.t.len()); names.len()];
         for (k, &t) in self.t.iter().enumerate() {
             let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
-            self.evaluate(t, u, up, &mut ws, &mut inputs, &mut out);
-            for (s, &i) in series.iter_mut().zip(&idx) {
-                s.push(out[i]);
-            }
+            let r = self.evaluate(t, u, up, &mut ws, &mut inputs, &mut out);
+            self.collect(&idx, names, t, &out, r, &mut series)?;
         }
         Ok(series)
     }
@@ -184,8 +213,10 @@ impl Solution {
         let mut inputs = self.inputs();
         let mut out = vec![0.0; self.observed.n_outputs()];
         let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
-        self.evaluate(self.t[k], u, up, &mut ws, &mut inputs, &mut out);
-        Ok(out[i])
+        let r = self.evaluate(self.t[k], u, up, &mut ws, &mut inputs, &mut out);
+        let mut series = [Vec::new()];
+        self.collect(&[i], &[name], self.t[k], &out, r, &mut series)?;
+        Ok(series[0][0])
     }
 
     /// The unknowns and derivatives interpolated at `t`: cubic Hermite for
@@ -255,10 +286,8 @@ impl Solution {
         let mut series = vec![Vec::with_capacity(times.len()); names.len()];
         for &t in times {
             let (u, up) = self.interpolate(t)?;
-            self.evaluate(t, &u, &up, &mut ws, &mut inputs, &mut out);
-            for (s, &i) in series.iter_mut().zip(&idx) {
-                s.push(out[i]);
-            }
+            let r = self.evaluate(t, &u, &up, &mut ws, &mut inputs, &mut out);
+            self.collect(&idx, names, t, &out, r, &mut series)?;
         }
         Ok(series)
     }

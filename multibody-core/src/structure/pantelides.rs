@@ -291,12 +291,35 @@ pub fn pantelides_with_implicit(
             }
             rounds += 1;
             if rounds > limit {
+                // Slots made by differentiation here are reported as the slots they are
+                // derivatives of (the caller knows only the slots it gave).
+                let mut anti: Vec<Option<usize>> = vec![None; var_diff.len()];
+                for (v, d) in var_diff.iter().enumerate() {
+                    if let Some(d) = *d {
+                        anti[d] = Some(v);
+                    }
+                }
+                let mut overdetermined: Vec<usize> = colored_vars
+                    .into_iter()
+                    .map(|mut v| {
+                        while v >= graph.n_vars {
+                            match anti[v] {
+                                Some(a) => v = a,
+                                None => break,
+                            }
+                        }
+                        v
+                    })
+                    .filter(|&v| v < graph.n_vars)
+                    .collect();
+                overdetermined.sort_unstable();
+                overdetermined.dedup();
                 return Err(StructurallySingular {
                     equations: colored_eqs
                         .into_iter()
                         .filter(|&e| e < n_original)
                         .collect(),
-                    overdetermined: colored_vars,
+                    overdetermined,
                     undetermined: Vec::new(),
                 });
             }
