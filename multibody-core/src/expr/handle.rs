@@ -465,7 +465,10 @@ impl fmt::Display for Expr {
         let s = match self.space {
             VAR | PARAM => symbols::name(self.index).to_string(),
             TIME => "time".to_string(),
-            _ => self.read(|a, id| a.display(id, &SymbolNames)),
+            sid => match store::find(sid) {
+                Some(cell) => cell.lock().display(Id(self.index), &SymbolNames),
+                None => "<an expression of a dropped model>".to_string(),
+            },
         };
         f.write_str(&s)
     }

@@ -294,6 +294,23 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
 /// prefetched.
 const PREFETCH_AHEAD: usize = 4;
 
+/// The first component of the tree (depth first) built with structural parameters it
+/// rejects.
+fn invalid_component(sys: &System) -> Option<ModelError> {
+    if !sys.invalid.is_empty() {
+        return Some(ModelError::InvalidComponent {
+            component: if sys.path.is_empty() {
+                sys.name.clone()
+            } else {
+                sys.path.clone()
+            },
+            type_name: sys.type_name.clone(),
+            message: sys.invalid.join("; "),
+        });
+    }
+    sys.subsystems.iter().find_map(invalid_component)
+}
+
 /// Where an expression being translated comes from, in words.
 fn describe_place(origin: &Origin, stores: &LockedStores<'_>) -> String {
     match origin {
@@ -326,6 +343,11 @@ fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
 /// flows zero), and checks names and connector classes. The balance check is separate
 /// ([`super::balance::check_balance`]).
 pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
+    // Components built with structural parameters they reject (their equations may
+    // make no sense, so they are reported before anything else).
+    if let Some(e) = invalid_component(sys) {
+        return Err(e);
+    }
     // The graph builds expressions (residues), in the model's store: before the stores
     // are locked.
     let graph = {
@@ -382,18 +404,6 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
         errors: Vec::new(),
         path_buffer: String::new(),
     };
-    // Components built with structural parameters they reject.
-    if let Some(s) = order.iter().find(|s| !s.invalid.is_empty()) {
-        return Err(ModelError::InvalidComponent {
-            component: if s.path.is_empty() {
-                s.name.clone()
-            } else {
-                s.path.clone()
-            },
-            type_name: s.type_name.clone(),
-            message: s.invalid.join("; "),
-        });
-    }
     // Pass 1: declarations.
     f.flat.variables.reserve_exact(n_variables);
     f.flat.starts.reserve_exact(n_variables);
