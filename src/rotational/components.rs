@@ -41,6 +41,7 @@ component! {
         /// Absolute angular acceleration [rad/s2].
         variable a: Real;
         equation {
+            assert(J.ge(0.0), "the moment of inertia J must not be negative");
             phi = flange_a.phi;
             phi = flange_b.phi;
             w = der(phi);

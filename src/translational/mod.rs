@@ -74,6 +74,7 @@ component! {
         /// Absolute acceleration [m/s2].
         variable a: Real;
         equation {
+            assert(m.ge(0.0), "the mass m must not be negative");
             flange_a.s = s - L / 2.0;
             flange_b.s = s + L / 2.0;
             v = der(s);

@@ -94,7 +94,7 @@ pub struct FlatAssertion {
     /// holds.
     pub condition: Id,
     /// What is wrong when it does not hold.
-    pub message: String,
+    pub message: SharedText,
     /// The path of the component that asserts it (empty for the model itself).
     pub component: String,
     /// The component's type.

@@ -99,7 +99,7 @@ pub struct Assertion {
     /// Nonzero when the condition holds (a comparison such as `m.ge(0.0)`).
     pub condition: Expr,
     /// What is wrong when it does not hold, e.g. "the mass m must not be negative".
-    pub message: String,
+    pub message: SharedText,
 }
 
 /// The condition of [`System::assert`]: known while the component is built (a Rust
@@ -316,10 +316,10 @@ impl System {
     /// `bool` on structural parameters is checked now, and compiling the model fails
     /// with `message` and this component's path when it is false; an expression of
     /// tunable parameters is checked when a problem sets their values.
-    pub fn assert(&mut self, condition: impl Into<Condition>, message: impl Into<String>) {
+    pub fn assert(&mut self, condition: impl Into<Condition>, message: impl Into<SharedText>) {
         match condition.into() {
             Condition::Now(true) => {}
-            Condition::Now(false) => self.invalid.push(message.into()),
+            Condition::Now(false) => self.invalid.push(message.into().to_string()),
             Condition::Parameters(e) => {
                 let condition = self.own(e);
                 let message = message.into();

@@ -85,7 +85,7 @@ fn check_assertions(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitEr
             model: sys.name.clone(),
             component: a.component.clone(),
             type_name: a.type_name.clone(),
-            message: a.message.clone(),
+            message: a.message.to_string(),
             values: values.join(", "),
         });
     }
