@@ -43,7 +43,7 @@ fn value(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     prop_oneof![
         40 => lo..hi,
         1 => Just(0.0),
-        1 => (-hi..-lo),
+        1 => -hi..-lo,
         1 => Just(1e12),
         1 => Just(1e-12),
         1 => Just(f64::NAN),
@@ -175,13 +175,7 @@ fn build_network(net: &Network) -> System {
                 },
             );
         } else {
-            m.add(
-                &name,
-                &Damper {
-                    d: e.k,
-                    ..Default::default()
-                },
-            );
+            m.add(&name, &Damper { d: e.k });
         }
         m.connect(&node(net, e.a), &format!("{name}.flange_a"));
         m.connect(&format!("{name}.flange_b"), &node(net, e.b));
