@@ -119,9 +119,9 @@ impl Default for IdaSettings {
 /// Which times are reported to the output callback.
 #[derive(Clone, Debug, PartialEq)]
 pub enum OutputMode {
-    /// IDA_NORMAL to each of these times (sorted, > t0)
+    /// These times (sorted, > t0), interpolated within the internal steps that pass them
     Times(Vec<f64>),
-    /// IDA_ONE_STEP with IDASetStopTime(t_end): report every internal step
+    /// Every internal step (the last one ends exactly at `t_end`)
     EveryStep {
         /// Final time; the last reported time equals it exactly.
         t_end: f64,
@@ -776,6 +776,33 @@ pub fn integrate(
     output: &OutputMode,
     on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
 ) -> Result<IdaStats, IdaError> {
+    integrate_monitored(f, t0, y0, yp0, settings, output, on_output, None).map(|r| r.stats)
+}
+
+/// How an integration with a step monitor ended.
+#[derive(Clone, Debug)]
+pub struct Integrated {
+    /// Statistics.
+    pub stats: IdaStats,
+    /// Where the monitor stopped it, with the unknowns and derivatives there (`None`
+    /// when it reached the final time).
+    pub stopped: Option<(f64, Vec<f64>, Vec<f64>)>,
+}
+
+/// [`integrate`], with `on_step(t, y, yp)` called after every internal step (after the
+/// outputs up to `t` are reported): `false` ends the integration there, successfully,
+/// with the point where it stopped.
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+pub fn integrate_monitored(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    output: &OutputMode,
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
+    mut on_step: Option<&mut dyn FnMut(f64, &[f64], &[f64]) -> bool>,
+) -> Result<Integrated, IdaError> {
     let n = f.len();
     validate(n, t0, y0, yp0, settings, output)?;
 
@@ -790,7 +817,10 @@ pub fn integrate(
                 on_output(*t_end, &[], &[]);
             }
         }
-        return Ok(IdaStats::default());
+        return Ok(Integrated {
+            stats: IdaStats::default(),
+            stopped: None,
+        });
     }
 
     // Jacobian pattern.
@@ -977,47 +1007,94 @@ pub fn integrate(
             let flag = sys::IDAGetConsistentIC(mem, yy, yp);
             g.check(flag, t0, "IDAGetConsistentIC", settings)?;
         }
-        let stopped = |t: f64| IdaError {
+        let stopped_err = |t: f64| IdaError {
             t,
             flag: "STOPPED".into(),
             message: "the output callback stopped the integration".into(),
         };
         if !on_output(t0, vec_ref(yy, n), vec_ref(yp, n)) {
-            return Err(stopped(t0));
+            return Err(stopped_err(t0));
         }
 
+        // One internal step at a time up to the stop time; requested output times are
+        // interpolated within the step that passed them (IDA's own dense output).
+        let t_end = t_last.unwrap_or(t0);
+        let (ky, kyp) = (
+            g.vector(&vec![0.0; n]).map_err(|m| g.setup_failed(t0, m))?,
+            g.vector(&vec![0.0; n]).map_err(|m| g.setup_failed(t0, m))?,
+        );
+        let mut next_output = 0;
         let mut t = t0;
-        match output {
-            OutputMode::Times(times) => {
-                for &tout in times {
-                    let flag = sys::IDASolve(mem, tout, &mut t, yy, yp, sys::IDA_NORMAL);
-                    if flag < 0 {
-                        return Err(g.error(t, flag, "", settings));
+        let mut stopped = None;
+        // The first call's target sets IDA's estimate of the first step: the first
+        // output time, as when integrating to each output in turn.
+        let mut target = match output {
+            OutputMode::Times(times) => times.first().copied().unwrap_or(t_end),
+            OutputMode::EveryStep { t_end } => *t_end,
+        };
+        // Steps since the last reported point (IDA counts per call, and every call here
+        // is one step).
+        let mut steps_since_output = 0usize;
+        loop {
+            let flag = sys::IDASolve(mem, target, &mut t, yy, yp, sys::IDA_ONE_STEP);
+            target = t_end;
+            if flag < 0 {
+                return Err(g.error(t, flag, "", settings));
+            }
+            let done = flag == sys::IDA_TSTOP_RETURN || t >= t_end;
+            let reported_before = next_output;
+            steps_since_output += 1;
+            match output {
+                OutputMode::Times(times) => {
+                    while let Some(&tout) = times.get(next_output) {
+                        if tout > t && !done {
+                            break;
+                        }
+                        next_output += 1;
+                        if tout >= t {
+                            // The step ends on the output time (or the stop time).
+                            if !on_output(tout, vec_ref(yy, n), vec_ref(yp, n)) {
+                                return Err(stopped_err(t));
+                            }
+                            continue;
+                        }
+                        let flag = sys::IDAGetDky(mem, tout, 0, ky);
+                        g.check(flag, tout, "IDAGetDky", settings)?;
+                        let flag = sys::IDAGetDky(mem, tout, 1, kyp);
+                        g.check(flag, tout, "IDAGetDky", settings)?;
+                        if !on_output(tout, vec_ref(ky, n), vec_ref(kyp, n)) {
+                            return Err(stopped_err(t));
+                        }
                     }
-                    if !on_output(t, vec_ref(yy, n), vec_ref(yp, n)) {
-                        return Err(stopped(t));
+                }
+                OutputMode::EveryStep { t_end } => {
+                    let reported = if done { *t_end } else { t };
+                    if !on_output(reported, vec_ref(yy, n), vec_ref(yp, n)) {
+                        return Err(stopped_err(t));
                     }
                 }
             }
-            OutputMode::EveryStep { t_end } => loop {
-                let flag = sys::IDASolve(mem, *t_end, &mut t, yy, yp, sys::IDA_ONE_STEP);
-                if flag < 0 {
-                    return Err(g.error(t, flag, "", settings));
-                }
-                if flag == sys::IDA_TSTOP_RETURN || t >= *t_end {
-                    if !on_output(*t_end, vec_ref(yy, n), vec_ref(yp, n)) {
-                        return Err(stopped(t));
-                    }
-                    break;
-                }
-                if !on_output(t, vec_ref(yy, n), vec_ref(yp, n)) {
-                    return Err(stopped(t));
-                }
-            },
+            if done {
+                break;
+            }
+            if matches!(output, OutputMode::EveryStep { .. }) || next_output > reported_before {
+                steps_since_output = 0;
+            } else if steps_since_output >= settings.max_steps {
+                return Err(g.error(t, sys::IDA_TOO_MUCH_WORK, "", settings));
+            }
+            if let Some(m) = on_step.as_mut()
+                && !m(t, vec_ref(yy, n), vec_ref(yp, n))
+            {
+                stopped = Some((t, vec_ref(yy, n).to_vec(), vec_ref(yp, n).to_vec()));
+                break;
+            }
         }
         let st = stats(mem);
         log::debug!("IDA finished at t = {t}: {st:?}");
-        Ok(st)
+        Ok(Integrated {
+            stats: st,
+            stopped,
+        })
     }
 }
 
