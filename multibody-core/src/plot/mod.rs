@@ -722,12 +722,28 @@ mod tests {
         );
     }
 
+    /// Width, height, bit depth and colour type from a PNG's IHDR chunk (the first
+    /// chunk, right after the 8-byte signature; PNG specification, section 11.2.2).
+    fn png_header(bytes: &[u8]) -> (u32, u32, u8, u8) {
+        assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+        assert_eq!(&bytes[12..16], b"IHDR", "the first chunk is not IHDR");
+        let be =
+            |i: usize| u32::from_be_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]);
+        (be(16), be(20), bytes[24], bytes[25])
+    }
+
     #[test]
     fn writes_png_file() {
         let path = unique_temp_png("demo");
-        plot_panels(&demo_panels(), &path, &PlotOptions::default()).unwrap();
+        let options = PlotOptions {
+            width: 900,
+            height: 300,
+            ..PlotOptions::default()
+        };
+        plot_panels(&demo_panels(), &path, &options).unwrap();
         let bytes = std::fs::read(&path).unwrap();
-        assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+        // The asked size (two panels side by side: one row), 8-bit RGB (colour type 2).
+        assert_eq!(png_header(&bytes), (900, 300, 8, 2));
         assert!(bytes.len() > 1000);
         if std::env::var_os("MULTIBODY_KEEP_PLOT").is_none() {
             let _ = std::fs::remove_file(&path);
@@ -771,8 +787,76 @@ mod tests {
         };
         let buf = render_to_buffer(&panels, &options).unwrap();
         assert_eq!(buf.len(), 1200 * 1000 * 3);
+        // The third panel (bottom left, x < 600, y >= 500) draws y = t^2 in the first
+        // palette colour, and nothing else in that colour (no legend: empty label).
+        let (w, h) = (1200u32, 1000u32);
+        let near = |p: [u8; 3], c: RGBColor| {
+            (i32::from(p[0]) - i32::from(c.0)).abs() < 12
+                && (i32::from(p[1]) - i32::from(c.1)).abs() < 12
+                && (i32::from(p[2]) - i32::from(c.2)).abs() < 12
+        };
+        let columns: Vec<Vec<u32>> = (0..600)
+            .map(|x| {
+                (500..h)
+                    .filter(|&y| near(pixel(&buf, w, x, y), PALETTE[0]))
+                    .collect()
+            })
+            .collect();
+        let drawn: Vec<usize> = (0..600).filter(|&x| !columns[x].is_empty()).collect();
+        let (xa, xb) = (drawn[0], *drawn.last().unwrap());
+        let rows = drawn.iter().flat_map(|&x| columns[x].iter().copied());
+        let (r_top, r_bottom) = rows.fold((u32::MAX, 0), |(a, b), r| (a.min(r), b.max(r)));
+        // The curve spans most of the panel both ways.
+        assert!(
+            xb - xa > 400 && r_bottom - r_top > 300,
+            "{xa}..{xb}, {r_top}..{r_bottom}"
+        );
+        // Pixel column -> t and t -> row, linear between the curve's ends (t = 0 at the
+        // bottom left, t = 49 at the top right, up to the line's half width).
+        let t_of = |x: usize| 49.0 * (x - xa) as f64 / (xb - xa) as f64;
+        let x_of = |t: f64| xa as f64 + t / 49.0 * (xb - xa) as f64;
+        let row_of =
+            |t: f64| f64::from(r_bottom) - (t / 49.0).powi(2) * f64::from(r_bottom - r_top);
+        // Within 3 pixels of a run's end (t = 0, 9, 13, 49) the line's caps and the
+        // mapping's pixel rounding leave it open whether a column is drawn: skipped.
+        let near = |x: usize, t: f64| (x as f64 - x_of(t)).abs() <= 3.0;
+        for x in xa..=xb {
+            let t = t_of(x);
+            if [0.0, 9.0, 11.0, 13.0, 49.0].iter().any(|&end| near(x, end)) {
+                continue;
+            }
+            if t > 9.0 && t < 13.0 {
+                // NaN at t = 10 and 12 break the line: nothing between 9 and 13 but the
+                // isolated point at t = 11.
+                assert!(columns[x].is_empty(), "column {x} (t = {t:.2}) is drawn");
+            } else {
+                // The parabola passes through this column within 3 pixels (the line is
+                // 2 pixels wide; its steepest part climbs 2 rows per column).
+                let expected = row_of(t);
+                let miss = columns[x]
+                    .iter()
+                    .map(|&r| (f64::from(r) - expected).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    miss <= 3.0,
+                    "column {x} (t = {t:.2}): curve {miss} px from y = t^2"
+                );
+            }
+        }
+        // The isolated point at t = 11 is a dot at y = 121.
+        assert!(
+            (xa..=xb)
+                .filter(|&x| near(x, 11.0))
+                .flat_map(|x| columns[x].iter())
+                .any(|&r| (f64::from(r) - row_of(11.0)).abs() <= 3.0),
+            "no dot at t = 11"
+        );
         let path = unique_temp_png("three");
         plot_panels(&panels, &path, &options).unwrap();
+        assert_eq!(
+            png_header(&std::fs::read(&path).unwrap()),
+            (1200, 1000, 8, 2)
+        );
         if std::env::var_os("MULTIBODY_KEEP_PLOT").is_none() {
             let _ = std::fs::remove_file(&path);
         }
@@ -910,10 +994,32 @@ mod tests {
 
     #[test]
     fn register_fonts_is_idempotent_across_threads() {
-        let handles: Vec<_> = (0..4).map(|_| std::thread::spawn(register_fonts)).collect();
-        for h in handles {
-            h.join().unwrap();
+        // Text needs the registered fonts (plotters has no system fonts here): threads
+        // that register them concurrently, and then again, all draw the same figure,
+        // with its legend text, as a single thread does.
+        let options = PlotOptions {
+            width: 400,
+            height: 200,
+            ..PlotOptions::default()
+        };
+        let draw = move || {
+            register_fonts();
+            register_fonts();
+            render_to_buffer(&demo_panels()[..1], &options).expect("fonts available")
+        };
+        let handles: Vec<_> = (0..4).map(|_| std::thread::spawn(draw.clone())).collect();
+        let buffers: Vec<Vec<u8>> = handles.into_iter().map(|h| h.join().unwrap()).collect();
+        let reference = draw();
+        for b in &buffers {
+            assert!(b == &reference, "a thread drew a different figure");
         }
-        register_fonts();
+        // Text is the only black in the figure (axes and ticks are drawn at 80 %
+        // black, (51, 51, 51); grid lines and the legend frame lighter): the legend
+        // labels, tick labels and the axis description give about 240 pixels below 20.
+        let black = reference
+            .chunks(3)
+            .filter(|p| p[0] < 20 && p[1] < 20 && p[2] < 20)
+            .count();
+        assert!(black > 100, "only {black} black pixels: text missing");
     }
 }

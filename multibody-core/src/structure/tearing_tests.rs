@@ -201,19 +201,63 @@ fn random_blocks_are_valid() {
 }
 
 #[test]
-fn large_blocks_are_fast_and_valid() {
-    // one big cycle: a single tearing variable suffices
+fn large_blocks_are_torn_as_their_structure_dictates() {
+    // One big cycle, eq i in vars i and i+1 (mod n): every variable is in two
+    // equations, so the lowest index is torn; then eq 0 gives var 1, eq 1 var 2, ...,
+    // eq n-2 var n-1 (lowest ready equation first), and eq n-1 (vars n-1 and 0) is the
+    // one residual. A single tearing variable suffices, and this is the only order.
     let n = 10_000;
     let eqs: Vec<TearingEquation> = (0..n)
         .map(|i| eq(&[(i, true), ((i + 1) % n, true)]))
         .collect();
     let t = tear(n, &eqs, None);
-    assert_eq!(t.torn_vars, vec![0]);
-    assert_eq!(t.residual_eqs, vec![n - 1]);
     check(n, &eqs, &t);
+    assert_eq!(
+        t,
+        Tearing {
+            torn_vars: vec![0],
+            residual_eqs: vec![n - 1],
+            assignments: (0..n - 1).map(|i| (i, i + 1)).collect(),
+        }
+    );
 
+    // A lower-triangular block in disguise: eq i solves var perm[i] and uses only
+    // variables solved by earlier equations (any of them, solvable or not), with the
+    // equations shuffled. It needs no tearing at all: there is always an equation with
+    // one unknown, so nothing may be torn, and every equation is an assignment of its
+    // own variable.
     let mut rng = Rng(7);
+    let mut perm: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, rng.below(i + 1));
+    }
+    let mut triangular: Vec<(usize, TearingEquation)> = (0..n)
+        .map(|i| {
+            let mut vars = vec![(perm[i], true)];
+            if i > 0 {
+                for _ in 0..rng.below(4) {
+                    vars.push((perm[rng.below(i)], rng.below(2) == 0));
+                }
+            }
+            (perm[i], TearingEquation { vars })
+        })
+        .collect();
+    for i in (1..n).rev() {
+        triangular.swap(i, rng.below(i + 1));
+    }
+    let (solves, eqs): (Vec<usize>, Vec<TearingEquation>) = triangular.into_iter().unzip();
+    let t = tear(n, &eqs, None);
+    check(n, &eqs, &t);
+    assert!(t.torn_vars.is_empty(), "{} torn", t.torn_vars.len());
+    assert!(t.residual_eqs.is_empty());
+    assert_eq!(t.assignments.len(), n);
+    for &(e, v) in &t.assignments {
+        assert_eq!(v, solves[e], "eq {e} solved for the wrong variable");
+    }
+
+    // A random block of the same size: still a valid tearing, deterministic.
     let eqs = random_block(&mut rng, n, 3);
     let t = tear(n, &eqs, None);
     check(n, &eqs, &t);
+    assert_eq!(t, tear(n, &eqs, None));
 }
