@@ -57,6 +57,11 @@ pub enum Origin {
         /// The condition as written.
         condition: Expr,
     },
+    /// Added by dynamic state selection (the definition of a dynamic state).
+    DynamicStates {
+        /// The equation in words.
+        text: String,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -195,6 +200,7 @@ impl FlatSystem {
                 format!("unconnected flow: {} = 0", name(*flow))
             }
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
+            Origin::DynamicStates { text } => format!("dynamic state selection: {text}"),
             Origin::Assertion { path, condition } => {
                 let at = if path.is_empty() { "model" } else { path };
                 format!("{at}: assert({condition})")

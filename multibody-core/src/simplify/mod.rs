@@ -8,6 +8,7 @@
 
 mod alias;
 pub mod causalize;
+pub mod dynamic_states;
 mod error;
 mod evaluate;
 mod pre_eliminate;
@@ -27,9 +28,10 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub use causalize::{BlockKind, LinearBlockLimits};
+pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
 pub use reduce::Slot;
-pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, Statistics};
+pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, StateCandidates, Statistics};
 
 use crate::Error;
 use crate::codegen::dae::{DaeSpec, Row, compile_dae};
@@ -41,7 +43,7 @@ use causalize::{Temporaries, causalize_graph};
 use reduce::{ReduceInput, reduce};
 
 /// Options of [`structural_simplify_with`].
-#[derive(Clone, Debug, PartialEq, Default)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SimplifyOptions {
     /// Where linear algebraic blocks are solved (default: [`LinearBlockLimits::default`],
     /// blocks up to 400 equations with at most 24 tearing variables inside).
@@ -56,6 +58,37 @@ pub struct SimplifyOptions {
     /// parallel axes), which the `multibody` crate's `structural_simplify_with` detects
     /// from the mechanism's geometry (default: [`PlanarLoops::Diagnose`]).
     pub planar_loops: PlanarLoops,
+    /// Where the choice of states among a group of candidates depends on the
+    /// configuration (the joint angles of a kinematic loop): whether the model gets
+    /// dynamic states, whose selection the solver changes at run time when the current
+    /// one degrades (Mattsson, Olsson and Elmqvist 2000; default:
+    /// [`DynamicStates::WhenNeeded`]).
+    pub dynamic_state_selection: DynamicStates,
+}
+
+/// When a model gets dynamic states (see [`SimplifyOptions::dynamic_state_selection`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DynamicStates {
+    /// Never: the static choice of states holds for the whole run.
+    Off,
+    /// The model is compiled with the static choice of states; a solve that finds it
+    /// degrading (or failing) compiles the model once more with dynamic states and
+    /// solves that instead (the default).
+    #[default]
+    WhenNeeded,
+    /// The model is compiled with dynamic states from the start.
+    Always,
+}
+
+impl Default for SimplifyOptions {
+    fn default() -> Self {
+        SimplifyOptions {
+            linear_blocks: LinearBlockLimits::default(),
+            evaluate_parameters: false,
+            planar_loops: PlanarLoops::default(),
+            dynamic_state_selection: DynamicStates::WhenNeeded,
+        }
+    }
 }
 
 /// Treatment of planar kinematic loops (see [`SimplifyOptions::planar_loops`]).
@@ -78,17 +111,100 @@ pub fn structural_simplify(model: &System) -> Result<SimplifiedSystem, Error> {
 
 /// Flattens `model`, checks its balance, eliminates aliases, reduces the index,
 /// selects states, sorts and tears the equations, and compiles the residual, its
-/// Jacobian and the observed variables.
+/// Jacobian and the observed variables. Where the choice of states depends on the
+/// configuration, the model gets dynamic states and is simplified again with them (see
+/// [`SimplifyOptions::dynamic_state_selection`]).
 pub fn structural_simplify_with(
     model: &System,
     options: &SimplifyOptions,
 ) -> Result<SimplifiedSystem, Error> {
     let t0 = Instant::now();
+    let flat = flatten_stage(model, options)?;
+    let flatten_s = t0.elapsed().as_secs_f64();
+    match simplify_flat(flat, options, Vec::new(), flatten_s)? {
+        Simplified::Done(mut ssys) => {
+            if options.dynamic_state_selection == DynamicStates::WhenNeeded
+                && !ssys.dynamic_candidates.is_empty()
+            {
+                ssys.dynamic_source = Some(Arc::new((model.clone(), options.clone())));
+            }
+            Ok(*ssys)
+        }
+        Simplified::NeedsDynamicStates(groups) => {
+            simplify_with_dynamic_states(model, options, &groups)
+        }
+    }
+}
+
+/// Simplifies `model` with dynamic states for `groups`.
+fn simplify_with_dynamic_states(
+    model: &System,
+    options: &SimplifyOptions,
+    groups: &[reduce::DynamicCandidates],
+) -> Result<SimplifiedSystem, Error> {
+    let t0 = Instant::now();
+    let mut flat = flatten_stage(model, options)?;
+    let dynamic = dynamic_states::augment(&mut flat.model, groups);
+    let flatten_s = t0.elapsed().as_secs_f64();
+    match simplify_flat(flat, options, dynamic, flatten_s)? {
+        Simplified::Done(ssys) => Ok(*ssys),
+        Simplified::NeedsDynamicStates(_) => {
+            unreachable!("a system with dynamic states asks for no more")
+        }
+    }
+}
+
+/// The model simplified again with dynamic states for the groups its static selection
+/// found (see [`DynamicStates::WhenNeeded`]).
+pub(crate) fn dynamic_variant(ssys: &SimplifiedSystem) -> Option<Result<SimplifiedSystem, Error>> {
+    let (model, options) = &**ssys.dynamic_source.as_ref()?;
+    let groups: Vec<reduce::DynamicCandidates> = ssys
+        .dynamic_candidates
+        .iter()
+        .map(|g| g.candidates.clone())
+        .collect();
+    Some(simplify_with_dynamic_states(model, options, &groups))
+}
+
+/// A flat model ready for simplification: flattened, balanced, parameters evaluated.
+struct FlatStage {
+    model: crate::model::FlatSystem,
+    evaluated_parameters: Vec<bool>,
+}
+
+/// Stage 1: flattening, the balance check and the evaluation of parameters.
+fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage, Error> {
     let mut flat = flatten(model)?;
     check_balance(&flat)?;
     let evaluated_parameters =
         evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
-    let flatten_s = t0.elapsed().as_secs_f64();
+    Ok(FlatStage {
+        model: flat,
+        evaluated_parameters,
+    })
+}
+
+/// What simplifying a flat model gave.
+enum Simplified {
+    /// The simplified system.
+    Done(Box<SimplifiedSystem>),
+    /// The choice of states depends on the configuration: simplify again with dynamic
+    /// states for these groups.
+    NeedsDynamicStates(Vec<reduce::DynamicCandidates>),
+}
+
+/// Stages 2 to 6 on a flat model: alias elimination, index reduction with state
+/// selection, causalization, code generation and the assembly of the result.
+fn simplify_flat(
+    stage: FlatStage,
+    options: &SimplifyOptions,
+    mut dynamic: Vec<dynamic_states::DynamicStateGroup>,
+    flatten_s: f64,
+) -> Result<Simplified, Error> {
+    let FlatStage {
+        model: mut flat,
+        evaluated_parameters,
+    } = stage;
     let t1 = Instant::now();
     let name = flat.name.clone();
     let flat_equations = flat.equations.len();
@@ -167,6 +283,12 @@ pub fn structural_simplify_with(
         },
         &name,
     )?;
+    if options.dynamic_state_selection == DynamicStates::Always
+        && dynamic.is_empty()
+        && !reduced.dynamic.is_empty()
+    {
+        return Ok(Simplified::NeedsDynamicStates(reduced.dynamic));
+    }
 
     // Sorting: every slot that is not a state is an unknown.
     let state_set: HashSet<usize> = reduced.states.iter().copied().collect();
@@ -311,6 +433,20 @@ pub fn structural_simplify_with(
     // Code generation.
     let t2 = Instant::now();
     let (observed, observed_names) = observed_outputs(&variables, &aliases.replaced, &reduced);
+    for group in &mut dynamic {
+        group.outputs = dynamic_outputs(group, &reduced, &index_of, variables.len());
+    }
+    // Groups whose static choice the solver watches (when the model has no dynamic
+    // states of its own).
+    let dynamic_candidates: Vec<dynamic_states::StaticGroup> = if dynamic.is_empty() {
+        reduced
+            .dynamic
+            .iter()
+            .filter_map(|g| static_group(g, &reduced, &index_of, variables.len()))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let code_rows: Vec<Row> = rows
         .iter()
         .map(|r| match *r {
@@ -381,7 +517,7 @@ pub fn structural_simplify_with(
         assertions,
         ..
     } = flat;
-    Ok(SimplifiedSystem {
+    Ok(Simplified::Done(Box::new(SimplifiedSystem {
         name,
         never_tear: never_tear.clone(),
         variables,
@@ -406,7 +542,127 @@ pub fn structural_simplify_with(
         compiled,
         statistics,
         warnings,
+        dynamic,
+        dynamic_candidates,
+        dynamic_source: None,
+        dynamic_variant: std::sync::OnceLock::new(),
         arena: std::sync::Arc::new(arena),
+    })))
+}
+
+/// Observed outputs of slots: the flat variables, then the derivative slots in slot
+/// order.
+struct OutputIndex<'r> {
+    reduced: &'r reduce::Reduced,
+    derivative_output: Vec<usize>,
+}
+
+impl<'r> OutputIndex<'r> {
+    fn new(reduced: &'r reduce::Reduced, n_variables: usize) -> Self {
+        let mut derivative_output = vec![usize::MAX; reduced.slots.len()];
+        let mut next = n_variables;
+        for (k, s) in reduced.slots.iter().enumerate() {
+            if s.order > 0 {
+                derivative_output[k] = next;
+                next += 1;
+            }
+        }
+        OutputIndex {
+            reduced,
+            derivative_output,
+        }
+    }
+
+    /// The observed output of a slot.
+    fn output(&self, slot: usize) -> usize {
+        let s = &self.reduced.slots[slot];
+        if s.order == 0 {
+            s.var
+        } else {
+            self.derivative_output[slot]
+        }
+    }
+
+    /// The slot of a kept variable.
+    fn slot_of_var(&self, v: usize) -> usize {
+        self.reduced
+            .slots
+            .iter()
+            .position(|s| s.var == v && s.order == 0)
+            .expect("a kept variable has a slot")
+    }
+
+    /// Observed outputs of candidates, their derivatives and second derivatives
+    /// (`usize::MAX` where there is none).
+    fn candidates(&self, candidates: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+        let derivative_slots: Vec<Option<usize>> = candidates
+            .iter()
+            .map(|&q| self.reduced.var_diff[self.slot_of_var(q)])
+            .collect();
+        let derivative = derivative_slots
+            .iter()
+            .map(|d| d.map_or(usize::MAX, |d| self.output(d)))
+            .collect();
+        let acceleration = derivative_slots
+            .iter()
+            .map(|d| {
+                d.and_then(|d| self.reduced.var_diff[d])
+                    .map_or(usize::MAX, |a| self.output(a))
+            })
+            .collect();
+        (candidates.to_vec(), derivative, acceleration)
+    }
+}
+
+/// Where the compiled functions hold the quantities of a group of dynamic states.
+fn dynamic_outputs(
+    group: &dynamic_states::DynamicStateGroup,
+    reduced: &reduce::Reduced,
+    index_of: &HashMap<Id, usize>,
+    n_variables: usize,
+) -> dynamic_states::GroupOutputs {
+    let outputs = OutputIndex::new(reduced, n_variables);
+    let (candidate, derivative, acceleration) = outputs.candidates(&group.candidates);
+    let unknown = |v: usize| index_of[&reduced.slots[outputs.slot_of_var(v)].leaf];
+    dynamic_states::GroupOutputs {
+        candidate,
+        derivative,
+        acceleration,
+        state: group.states.iter().map(|&v| unknown(v)).collect(),
+        velocity_state: group.velocity_states.iter().map(|&v| unknown(v)).collect(),
+    }
+}
+
+/// The statically selected group `g` as the solver watches it: where the velocities of
+/// its chosen candidates are unknowns (`None` when one is not).
+fn static_group(
+    g: &reduce::DynamicCandidates,
+    reduced: &reduce::Reduced,
+    index_of: &HashMap<Id, usize>,
+    n_variables: usize,
+) -> Option<dynamic_states::StaticGroup> {
+    let outputs = OutputIndex::new(reduced, n_variables);
+    let (candidate, derivative, acceleration) = outputs.candidates(&g.candidates);
+    if derivative.contains(&usize::MAX) {
+        return None;
+    }
+    let velocity_state = g
+        .chosen
+        .iter()
+        .map(|&i| {
+            let d = reduced.var_diff[outputs.slot_of_var(g.candidates[i])]?;
+            index_of.get(&reduced.slots[d].leaf).copied()
+        })
+        .collect::<Option<Vec<usize>>>()?;
+    Some(dynamic_states::StaticGroup {
+        candidates: g.clone(),
+        outputs: dynamic_states::GroupOutputs {
+            candidate,
+            derivative,
+            acceleration,
+            state: Vec::new(),
+            velocity_state,
+        },
     })
 }
 

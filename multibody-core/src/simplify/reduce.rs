@@ -60,6 +60,28 @@ pub(crate) struct Reduced {
     pub dummy: Vec<bool>,
     pub n_original: usize,
     pub warnings: Vec<String>,
+    /// Groups of candidates whose choice as states depends on the configuration.
+    pub dynamic: Vec<DynamicCandidates>,
+}
+
+/// Candidates for states whose choice depends on the configuration: the variables (the
+/// bottoms of the derivative chains of a level of the selection, those that may be
+/// states at all) among which `chosen.len()` are states, and which ones the static
+/// selection chose.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct DynamicCandidates {
+    /// Flat variables.
+    pub candidates: Vec<usize>,
+    /// Per candidate: the flat variable that is its derivative (a velocity declared as
+    /// `w = der(phi)`), if any.
+    pub derivatives: Vec<Option<usize>>,
+    /// Per candidate: its state priority.
+    pub priorities: Vec<f64>,
+    /// Positions in `candidates` of the static choice.
+    pub chosen: Vec<usize>,
+    /// How often the candidates are differentiated in the level (2 for the joint angles
+    /// of a mechanism, whose accelerations the level decides about).
+    pub order: usize,
 }
 
 /// Applies the derivative aliases to an expression (`der(x) -> v`), with a memo kept
@@ -358,58 +380,14 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
                 });
             }
         };
-    for level in &selection.levels {
-        if level.candidates.len() > level.equations.len() {
-            // Is the Jacobian of the level's equations with respect to the chosen
-            // dummies nonsingular whatever the configuration? It is when it can be
-            // permuted to triangular form with constant, nonzero diagonal entries (the
-            // joint accelerations of a tree); a larger block, a coefficient that depends
-            // on the motion, or dummies reached only through intermediates (a loop)
-            // make the choice depend on the configuration.
-            let varying = configuration_dependent(table.arena, &table.slots, &eqs, level);
-            if varying {
-                // What is decided: which antiderivatives of the candidates stay states.
-                let mut anti = vec![None; var_diff.len()];
-                for (v, d) in var_diff.iter().enumerate() {
-                    if let Some(d) = *d {
-                        anti[d] = Some(v);
-                    }
-                }
-                let decided = |dummy: bool| -> Vec<String> {
-                    level
-                        .candidates
-                        .iter()
-                        .filter(|v| level.dummies.contains(v) == dummy)
-                        .filter_map(|&v| anti[v])
-                        .map(|v| table.slots[v].name(table.variables))
-                        .collect()
-                };
-                let shown: Vec<String> = level
-                    .equations
-                    .iter()
-                    .take(3)
-                    .map(|&e| format!("`{}`", eqs[e].text))
-                    .collect();
-                let more = level.equations.len().saturating_sub(3);
-                let msg = format!(
-                    "static state selection: for {}{} the states kept are {} and {} are \
-                     computed from the constraints; the choice depends on the configuration \
-                     and may become singular during the motion (give the intended states a \
-                     higher state_priority)",
-                    shown.join(", "),
-                    if more > 0 {
-                        format!(" and {more} more equations")
-                    } else {
-                        String::new()
-                    },
-                    crate::names::list(&decided(false), 12),
-                    crate::names::list(&decided(true), 12),
-                );
-                log::warn!("{msg}");
-                warnings.push(msg);
-            }
-        }
-    }
+    let dynamic = dynamic_candidates(
+        table.arena,
+        &table.slots,
+        &var_diff,
+        &eqs,
+        &selection.levels,
+        priority,
+    );
     let mut dummy = selection.dummy.clone();
     dummy.resize(table.slots.len(), false);
     Ok(Reduced {
@@ -422,6 +400,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
         dummy,
         n_original,
         warnings,
+        dynamic,
     })
 }
 
@@ -448,6 +427,96 @@ fn derivative_links(
 
 /// Whether the Jacobian of a selection level's equations with respect to its dummies can
 /// become singular (see the call site).
+/// The groups of [`DynamicCandidates`]: for every level of the selection whose choice
+/// depends on the configuration and that has more candidates than equations, the
+/// variables at the bottom of the candidates' derivative chains whose priority lets
+/// them be states (not below 0, not `always`), and those the static selection kept.
+fn dynamic_candidates(
+    arena: &mut Arena,
+    slots: &[Slot],
+    var_diff: &[Option<usize>],
+    eqs: &[ReducedEquation],
+    levels: &[SelectionLevel],
+    priority: &[f64],
+) -> Vec<DynamicCandidates> {
+    use crate::structure::dummy_derivatives::ALWAYS;
+    let mut anti = vec![None; var_diff.len()];
+    for (v, d) in var_diff.iter().enumerate() {
+        if let Some(d) = *d {
+            anti[d] = Some(v);
+        }
+    }
+    let base = |mut v: usize| {
+        while let Some(a) = anti[v] {
+            v = a;
+        }
+        v
+    };
+    let mut groups = Vec::new();
+    for level in levels {
+        if level.candidates.len() <= level.equations.len()
+            || !configuration_dependent(arena, slots, eqs, level)
+        {
+            continue;
+        }
+        let depth = |mut w: usize| {
+            let mut d = 0;
+            while let Some(a) = anti[w] {
+                d += 1;
+                w = a;
+            }
+            d
+        };
+        // The order of the states the level decides about: that of the candidates the
+        // static selection kept.
+        let Some(order) = level
+            .candidates
+            .iter()
+            .filter(|v| !level.dummies.contains(v))
+            .map(|&v| depth(v))
+            .max()
+        else {
+            continue;
+        };
+        let mut group = DynamicCandidates {
+            candidates: Vec::new(),
+            derivatives: Vec::new(),
+            priorities: Vec::new(),
+            chosen: Vec::new(),
+            order,
+        };
+        for &v in &level.candidates {
+            let b = base(v);
+            let var = slots[b].var;
+            if depth(v) != order
+                || !(0.0..ALWAYS).contains(&priority[var])
+                || group.candidates.contains(&var)
+            {
+                continue;
+            }
+            if !level.dummies.contains(&v) {
+                group.chosen.push(group.candidates.len());
+            }
+            group.candidates.push(var);
+            group.priorities.push(priority[var]);
+            group.derivatives.push(
+                var_diff[b]
+                    .filter(|&d| slots[d].order == 0)
+                    .map(|d| slots[d].var),
+            );
+        }
+        if !group.chosen.is_empty() && group.candidates.len() > group.chosen.len() {
+            log::debug!(
+                "dynamic state selection: {} states among {} candidates",
+                group.chosen.len(),
+                group.candidates.len()
+            );
+            groups.push(group);
+        }
+    }
+    groups
+}
+
 fn configuration_dependent(
     arena: &mut Arena,
     slots: &[Slot],

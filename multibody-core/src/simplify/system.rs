@@ -163,6 +163,15 @@ impl fmt::Display for Statistics {
     }
 }
 
+/// A group of candidates for states (see [`SimplifiedSystem::state_candidates`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StateCandidates {
+    /// The candidates (variables).
+    pub candidates: Vec<String>,
+    /// Those the static selection chose as states.
+    pub chosen: Vec<String>,
+}
+
 /// A model reduced to unknowns `u` (states and algebraic unknowns), a diagonal mass
 /// matrix and residuals `0 = F(t, u, u')`, with every eliminated variable kept as an
 /// observed expression and the compiled functions ready for a
@@ -210,6 +219,17 @@ pub struct SimplifiedSystem {
     pub(crate) compiled: CompiledDae,
     pub(crate) statistics: Statistics,
     pub(crate) warnings: Vec<String>,
+    /// Groups of dynamic states (see [`super::dynamic_states`]).
+    pub(crate) dynamic: Vec<super::dynamic_states::DynamicStateGroup>,
+    /// Groups whose static choice of states depends on the configuration (watched by
+    /// the solver when the system has no dynamic states).
+    pub(crate) dynamic_candidates: Vec<super::dynamic_states::StaticGroup>,
+    /// The model and options to compile again with dynamic states, when the solver
+    /// finds the static choice degrading.
+    pub(crate) dynamic_source:
+        Option<std::sync::Arc<(crate::model::System, super::SimplifyOptions)>>,
+    /// That compilation, made on first need.
+    pub(crate) dynamic_variant: std::sync::OnceLock<Result<Box<SimplifiedSystem>, String>>,
 }
 
 impl SimplifiedSystem {
@@ -222,6 +242,29 @@ impl SimplifiedSystem {
     /// The model's name.
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// The groups of candidates for states whose static choice depends on the
+    /// configuration (the joint angles of a kinematic loop): per group, the candidates
+    /// and those chosen. A solve watches the choice and changes to dynamic states where
+    /// it degrades (see [`super::DynamicStates`]).
+    pub fn state_candidates(&self) -> Vec<StateCandidates> {
+        let name = |v: usize| self.variables[v].name.to_string();
+        let from = |candidates: &[usize], chosen: &[usize]| StateCandidates {
+            candidates: candidates.iter().map(|&v| name(v)).collect(),
+            chosen: chosen.iter().map(|&i| name(candidates[i])).collect(),
+        };
+        if self.dynamic.is_empty() {
+            self.dynamic_candidates
+                .iter()
+                .map(|g| from(&g.candidates.candidates, &g.candidates.chosen))
+                .collect()
+        } else {
+            self.dynamic
+                .iter()
+                .map(|g| from(&g.candidates, &g.preferred))
+                .collect()
+        }
     }
 
     /// Names of the unknowns `u`, in order: position-level states, algebraic unknowns,

@@ -147,6 +147,19 @@ pub struct IdaStats {
     pub linear_setups: u64,
 }
 
+impl IdaStats {
+    /// Adds the counts of `other` (another integration of the same run).
+    pub fn add(&mut self, other: &IdaStats) {
+        self.steps += other.steps;
+        self.residual_evals += other.residual_evals;
+        self.jacobian_evals += other.jacobian_evals;
+        self.error_test_failures += other.error_test_failures;
+        self.nonlinear_iterations += other.nonlinear_iterations;
+        self.nonlinear_convergence_failures += other.nonlinear_convergence_failures;
+        self.linear_setups += other.linear_setups;
+    }
+}
+
 /// Failure of an IDA integration.
 #[derive(Debug, Clone, thiserror::Error)]
 #[error("IDA failed at t = {t}: {flag} ({message})")]
@@ -1091,10 +1104,7 @@ pub fn integrate_monitored(
         }
         let st = stats(mem);
         log::debug!("IDA finished at t = {t}: {st:?}");
-        Ok(Integrated {
-            stats: st,
-            stopped,
-        })
+        Ok(Integrated { stats: st, stopped })
     }
 }
 

@@ -5,6 +5,7 @@
 //! integrates with IDA (the only FFI of the project lives in [`ida`] and the linear
 //! solver glue) and returns a [`Solution`].
 
+mod dynamic;
 mod error;
 pub mod ida;
 mod init;
@@ -19,4 +20,4 @@ pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
 pub use options::{LinearSolverChoice, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
-pub use solution::Solution;
+pub use solution::{Segment, Solution};

@@ -10,11 +10,13 @@ use crate::expr::{Arena, Id, Node};
 use crate::names::{closest, number};
 use crate::simplify::SimplifiedSystem;
 
+use super::dynamic::{self, Observer};
 use super::error::{InitError, SolveError};
+use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
 use super::init::{InitInput, initialize};
 use super::options::{LinearSolverChoice, SolverOptions};
-use super::solution::Solution;
+use super::solution::{Segment, Solution, SolutionParts};
 
 /// What the initialization did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -39,6 +41,20 @@ pub struct DaeProblem<'a> {
     u0: Vec<f64>,
     up0: Vec<f64>,
     report: InitReport,
+    /// The values and guesses given (for the same problem on the system's dynamic
+    /// variant, if one is needed).
+    given: Option<Box<Given>>,
+}
+
+/// Values and guesses a problem was made with, and the value of every variable its
+/// initialization found.
+#[derive(Clone, Debug)]
+struct Given {
+    values: Vec<(String, f64)>,
+    guesses: Vec<(String, f64)>,
+    /// Per flat variable: its value at the initial time (`None` for variables the
+    /// simplified system replaced).
+    initial: Vec<Option<f64>>,
 }
 
 /// Evaluates parameter values: bindings may refer to other parameters.
@@ -60,6 +76,154 @@ pub(crate) fn parameter_values(
             ),
         },
     )
+}
+
+/// `sys` compiled with dynamic states (compiled on first need, then kept by `sys`).
+fn dynamic_variant_of(sys: &SimplifiedSystem, t: f64) -> Result<&SimplifiedSystem, Error> {
+    let variant = sys
+        .dynamic_variant
+        .get_or_init(|| {
+            crate::simplify::dynamic_variant(sys)
+                .expect("a system that watches its states has a source")
+                .map(Box::new)
+                .map_err(|e| e.to_string())
+        })
+        .as_ref()
+        .map_err(|message| SolveError {
+            model: sys.name.clone(),
+            t,
+            flag: "DYNAMIC_STATES".into(),
+            message: format!(
+                "the static choice of states degrades, and the model with dynamic states does \
+                 not compile: {message}"
+            ),
+        })?;
+    Ok(variant)
+}
+
+/// How many selections of dynamic states the initialization tries before it gives up.
+///
+/// (With `pin`, the selected candidates' values are fixed: the point is known, only
+/// its parametrization is chosen.)
+const SELECTIONS_TRIED: usize = 24;
+
+/// The initialization of a system with dynamic states: the selections to try, best
+/// first (the candidates with fixed start values, then the static choice of states,
+/// then the others), each with the fixed start values of its candidates moved to the
+/// dynamic states; the first that initializes wins.
+#[allow(clippy::result_large_err)] // once per problem, reported to the user
+fn initialize_dynamic(
+    sys: &SimplifiedSystem,
+    t0: f64,
+    params: Vec<f64>,
+    starts: Vec<Option<f64>>,
+    fixed: Vec<bool>,
+    guesses: Vec<Option<f64>>,
+    pin: bool,
+) -> Result<super::init::InitResult, InitError> {
+    let per_group: Vec<Vec<Vec<usize>>> = sys
+        .dynamic
+        .iter()
+        .map(|g| {
+            // Candidates whose values are given (fixed, then with start values) first:
+            // their values become those of the dynamic states.
+            let rank = |i: usize| {
+                let q = g.candidates[i];
+                let fixed_here = fixed[q] || g.derivatives[i].is_some_and(|d| fixed[d]);
+                let started =
+                    starts[q].is_some() || g.derivatives[i].is_some_and(|d| starts[d].is_some());
+                let preferred = g.preferred.contains(&i);
+                (!fixed_here, !started, !preferred, -g.priorities[i], i)
+            };
+            let mut order: Vec<usize> = (0..g.candidates.len()).collect();
+            order.sort_by(|&a, &b| {
+                let (ra, rb) = (rank(a), rank(b));
+                (ra.0, ra.1, ra.2)
+                    .cmp(&(rb.0, rb.1, rb.2))
+                    .then(ra.3.total_cmp(&rb.3))
+                    .then(ra.4.cmp(&rb.4))
+            });
+            subsets(&order, g.n_states(), SELECTIONS_TRIED)
+        })
+        .collect();
+    let mut first_error = None;
+    for attempt in 0..SELECTIONS_TRIED {
+        // Attempt k takes the k-th selection of every group (the last where a group has
+        // fewer).
+        let selections: Vec<&Vec<usize>> = per_group
+            .iter()
+            .map(|opts| &opts[attempt.min(opts.len() - 1)])
+            .collect();
+        if attempt > 0 && per_group.iter().all(|opts| attempt >= opts.len()) {
+            break;
+        }
+        let (mut params, mut starts, mut fixed, mut guesses) = (
+            params.clone(),
+            starts.clone(),
+            fixed.clone(),
+            guesses.clone(),
+        );
+        for (g, sel) in sys.dynamic.iter().zip(&selections) {
+            g.select(sel, &mut params);
+            for (j, &i) in sel.iter().enumerate() {
+                let q = g.candidates[i];
+                for (to, from) in [
+                    (g.states[j], Some(q)),
+                    (g.velocity_states[j], g.derivatives[i]),
+                ] {
+                    // A state without a start value starts at 0, as the candidate would.
+                    starts[to] = from.and_then(|f| starts[f]).or(Some(0.0));
+                    let Some(from) = from else { continue };
+                    fixed[to] = pin || fixed[from];
+                    fixed[from] = false;
+                    if guesses[from].is_none() {
+                        guesses[from] = starts[from];
+                    }
+                }
+            }
+        }
+        match initialize(InitInput {
+            sys,
+            t0,
+            params,
+            starts,
+            fixed,
+            guesses,
+        }) {
+            Ok(init) => return Ok(init),
+            Err(e) => {
+                log::debug!("dynamic state selection {selections:?} does not initialize: {e}");
+                first_error.get_or_insert(e);
+            }
+        }
+    }
+    Err(first_error.expect("at least one attempt"))
+}
+
+/// Up to `limit` subsets of `size` of `items`, in the lexicographic order of their
+/// positions in `items` (the first the first `size` items).
+fn subsets(items: &[usize], size: usize, limit: usize) -> Vec<Vec<usize>> {
+    let mut out = Vec::new();
+    let mut idx: Vec<usize> = (0..size).collect();
+    if size > items.len() {
+        return vec![items.to_vec()];
+    }
+    loop {
+        let mut pick: Vec<usize> = idx.iter().map(|&k| items[k]).collect();
+        pick.sort_unstable();
+        out.push(pick);
+        if out.len() >= limit {
+            return out;
+        }
+        // Next combination.
+        let Some(pos) = (0..size).rev().find(|&p| idx[p] < items.len() - size + p) else {
+            return out;
+        };
+        idx[pos] += 1;
+        for p in pos + 1..size {
+            idx[p] = idx[p - 1] + 1;
+        }
+    }
 }
 
 /// Checks the components' conditions on the parameter values `params`.
@@ -261,14 +425,59 @@ impl<'a> DaeProblem<'a> {
             starts.push(s);
             fixed.push(v.fixed);
         }
-        let init = initialize(InitInput {
-            sys,
-            t0: tspan.0,
-            params,
-            starts,
-            fixed,
-            guesses: guess_values,
-        })?;
+        let init = if sys.dynamic.is_empty() {
+            let init = initialize(InitInput {
+                sys,
+                t0: tspan.0,
+                params,
+                starts,
+                fixed,
+                guesses: guess_values,
+            });
+            match init {
+                Ok(init) => init,
+                // The static choice of states may be singular right here: the model with
+                // dynamic states chooses others.
+                Err(e) if sys.dynamic_source.is_some() => {
+                    log::info!(
+                        "model `{}`: initialization with the static choice of states failed \
+                         ({e}); trying dynamic states",
+                        sys.name
+                    );
+                    let variant = dynamic_variant_of(sys, tspan.0)?;
+                    return DaeProblem::new_with_guesses(variant, values, guesses, tspan)
+                        .map_err(|_| Error::from(e));
+                }
+                Err(e) => return Err(e.into()),
+            }
+        } else {
+            initialize_dynamic(sys, tspan.0, params, starts, fixed, guess_values, false)?
+        };
+        let given = sys.dynamic_source.is_some().then(|| {
+            let own =
+                |list: &[(&str, f64)]| list.iter().map(|&(n, v)| (n.to_string(), v)).collect();
+            let mut initial = vec![None; sys.variables.len()];
+            for (k, slot) in sys.slots.iter().enumerate() {
+                if slot.order == 0 {
+                    initial[slot.var] = Some(init.slot_values[k]);
+                }
+            }
+            Box::new(Given {
+                values: own(values),
+                guesses: own(guesses),
+                initial,
+            })
+        });
+        Ok(DaeProblem::from_init(sys, tspan, init, given))
+    }
+
+    /// The problem of `sys` over `tspan` that `init` initialized.
+    fn from_init(
+        sys: &'a SimplifiedSystem,
+        tspan: (f64, f64),
+        init: super::init::InitResult,
+        given: Option<Box<Given>>,
+    ) -> DaeProblem<'a> {
         // u0 and u'0 from the slot values.
         let mut u0 = Vec::with_capacity(sys.unknowns.len());
         let mut up0 = Vec::with_capacity(sys.unknowns.len());
@@ -277,7 +486,7 @@ impl<'a> DaeProblem<'a> {
             u0.push(init.slot_values[s]);
             up0.push(sys.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
         }
-        Ok(DaeProblem {
+        DaeProblem {
             sys,
             tspan,
             params: init.params,
@@ -288,7 +497,51 @@ impl<'a> DaeProblem<'a> {
                 iterations: init.iterations,
                 iteration_variables: init.iteration_variables,
             },
-        })
+            given,
+        }
+    }
+
+    /// The same problem on the system compiled with dynamic states (compiled now if it
+    /// was not yet), from this problem's initial point: every variable keeps the value
+    /// this initialization gave it, and the dynamic states are chosen where that point
+    /// lets them be.
+    fn on_dynamic_variant(&self) -> Result<DaeProblem<'a>, Error> {
+        let sys = self.sys;
+        let variant = dynamic_variant_of(sys, self.tspan.0)?;
+        let t0 = self.tspan.0;
+        let given = self
+            .given
+            .as_deref()
+            .expect("kept for a system with a source");
+        // The variant has the same variables and parameters first (the same model,
+        // flattened the same way), then those of its dynamic states.
+        let mut params = parameter_values(variant, &HashMap::default())?;
+        params[..self.params.len()].copy_from_slice(&self.params);
+        let mut starts: Vec<Option<f64>> = vec![None; variant.variables.len()];
+        starts[..given.initial.len()].copy_from_slice(&given.initial);
+        let guesses = starts.clone();
+        let fixed = vec![false; variant.variables.len()];
+        let init = match initialize_dynamic(variant, t0, params, starts, fixed, guesses, true) {
+            Ok(init) => init,
+            Err(e) => {
+                log::debug!("the initial point does not initialize the dynamic states: {e}");
+                // The variant initializes from the values given.
+                let values: Vec<(&str, f64)> =
+                    given.values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+                let guesses: Vec<(&str, f64)> = given
+                    .guesses
+                    .iter()
+                    .map(|(n, v)| (n.as_str(), *v))
+                    .collect();
+                return DaeProblem::new_with_guesses(variant, &values, &guesses, self.tspan);
+            }
+        };
+        Ok(DaeProblem::from_init(
+            variant,
+            self.tspan,
+            init,
+            self.given.clone(),
+        ))
     }
 
     /// The consistent initial unknowns `u(t0)`, in the order of
@@ -333,7 +586,9 @@ impl<'a> DaeProblem<'a> {
         out
     }
 
-    /// Integrates with IDA.
+    /// Integrates with IDA. Where the system has dynamic states, the integration stops
+    /// whenever their selection should change, and restarts from the same point with
+    /// the new selection (the solution then has several segments).
     pub fn solve(&self, options: &SolverOptions) -> Result<Solution, Error> {
         let sys = self.sys;
         if let Err(message) = options.check(self.tspan) {
@@ -345,14 +600,214 @@ impl<'a> DaeProblem<'a> {
             }
             .into());
         }
+        let output_times = options.output_times.as_ref().map(|times| {
+            let mut ts: Vec<f64> = times
+                .iter()
+                .copied()
+                .filter(|&t| t > self.tspan.0 && t <= self.tspan.1)
+                .collect();
+            ts.sort_by(f64::total_cmp);
+            ts.dedup();
+            if ts.last() != Some(&self.tspan.1) {
+                ts.push(self.tspan.1);
+            }
+            ts
+        });
+        // A static choice of states that may degrade is watched; where it does, the
+        // problem is solved on the model with dynamic states instead.
+        let watched = sys.dynamic.is_empty() && sys.dynamic_source.is_some();
+        match self.run_segments(options, output_times.as_deref(), watched) {
+            Err(Degraded::Static { t }) => {
+                log::info!(
+                    "model `{}`: the static choice of states degrades at t = {t}; solving with \
+                     dynamic states",
+                    sys.name
+                );
+                self.on_dynamic_variant()?.solve(options)
+            }
+            Err(Degraded::Error(e)) => Err(e),
+            Ok(solution) => Ok(solution),
+        }
+    }
+
+    /// Integrates the segments of the run (see [`Self::solve`]); with `watched`, stops
+    /// where the static choice of states degrades or the integration fails.
+    fn run_segments(
+        &self,
+        options: &SolverOptions,
+        output_times: Option<&[f64]>,
+        watched: bool,
+    ) -> Result<Solution, Degraded> {
+        let sys = self.sys;
+        let n = self.u0.len();
+        let mut run = Run {
+            t: Vec::new(),
+            u: Vec::new(),
+            up: Vec::new(),
+            segments: Vec::new(),
+            stats: IdaStats::default(),
+            points_left: options.max_points,
+        };
+        let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
+        let mut params = self.params.clone();
+        let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+        let mut bridges = 0;
+        // The end of the stretch being integrated with relaxed tolerances across a
+        // singular point (`None` outside one), and the relaxation.
+        let mut bridge_end: Option<f64> = None;
+        let mut relaxation = BRIDGE_RELAXATION;
+        loop {
+            let segment = Segment {
+                first: run.t.len(),
+                params: params.clone(),
+            };
+            let t_end = bridge_end.unwrap_or(self.tspan.1);
+            let mut times: Option<Vec<f64>> = output_times.map(|ts| {
+                ts.iter()
+                    .copied()
+                    .filter(|&t| t > t0 && t <= t_end)
+                    .collect()
+            });
+            if let Some(ts) = times.as_mut()
+                && ts.last() != Some(&t_end)
+            {
+                // A stretch that ends between output times ends with a point of its own.
+                ts.push(t_end);
+            }
+            let segment_options;
+            let options_here = match bridge_end {
+                Some(_) => {
+                    segment_options = SolverOptions {
+                        rtol: options.rtol * relaxation,
+                        atol: options.atol * relaxation,
+                        ..options.clone()
+                    };
+                    &segment_options
+                }
+                None => options,
+            };
+            let end = self
+                .integrate_segment(
+                    &params,
+                    (t0, t_end),
+                    (&u0, &up0),
+                    times,
+                    options_here,
+                    &mut observer,
+                    &mut run,
+                    watched,
+                )
+                .map_err(Degraded::Error)?;
+            run.segments.push(segment);
+            match end {
+                SegmentEnd::Done if bridge_end.is_some() && t_end < self.tspan.1 => {
+                    // Across the singular point: on with the asked tolerances from the
+                    // stretch's last point.
+                    bridge_end = None;
+                    let k = run.t.len() - 1;
+                    t0 = run.t[k];
+                    u0 = run.u[k * n..(k + 1) * n].to_vec();
+                    up0 = run.up[k * n..(k + 1) * n].to_vec();
+                }
+                SegmentEnd::Done => break,
+                SegmentEnd::StaticDegraded { t } => return Err(Degraded::Static { t }),
+                SegmentEnd::Switch { t, y, yp, decision } => {
+                    // The point where the selection changes ends this segment (it has
+                    // it) and starts the next, with the new selection.
+                    for (g, sel) in sys.dynamic.iter().zip(&decision.selections) {
+                        g.select(sel, &mut params);
+                    }
+                    let (y, yp) = dynamic::restart_point(
+                        &observer,
+                        &sys.dynamic,
+                        &decision.selections,
+                        &y,
+                        &yp,
+                    );
+                    (t0, u0, up0) = (t, y, yp);
+                }
+                SegmentEnd::Failed { error, last } => {
+                    // The constraints themselves are singular here (every selection of
+                    // states is): cross with relaxed tolerances from the last step, more
+                    // relaxed if a relaxed stretch fails too.
+                    if bridge_end.is_some() {
+                        relaxation *= BRIDGE_RELAXATION;
+                    } else {
+                        relaxation = BRIDGE_RELAXATION;
+                    }
+                    let usable = bridges < MAX_BRIDGES && options.rtol * relaxation <= BRIDGE_RTOL;
+                    let Some((t_fail, _, _)) = last.filter(|_| usable) else {
+                        return Err(Degraded::Error(error));
+                    };
+                    bridges += 1;
+                    // Start somewhat before the failure (the integrator needs room to
+                    // build up its order), at a point of the failed segment.
+                    let length = BRIDGE_LENGTH * (self.tspan.1 - self.tspan.0);
+                    let first = run.segments.last().map_or(0, |s| s.first);
+                    let k = (first..run.t.len())
+                        .rev()
+                        .find(|&k| run.t[k] <= t_fail - length)
+                        .unwrap_or(first);
+                    t0 = run.t[k];
+                    u0 = run.u[k * n..(k + 1) * n].to_vec();
+                    up0 = run.up[k * n..(k + 1) * n].to_vec();
+                    // The restart point is the first point of the next segment (the
+                    // failed one keeps its points before it, if any).
+                    run.truncate(k);
+                    if run.segments.last().is_some_and(|s| s.first >= k) {
+                        run.segments.pop();
+                    }
+                    bridge_end = Some((t_fail + length).min(self.tspan.1));
+                    log::info!(
+                        "model `{}`: the integration crosses a singular configuration near t = \
+                         {t_fail} with tolerances relaxed {relaxation}-fold from t = {t0} to {}",
+                        sys.name,
+                        bridge_end.unwrap_or(t_fail)
+                    );
+                }
+            }
+            debug_assert_eq!(u0.len(), n);
+        }
+        Ok(Solution::new(SolutionParts {
+            model: sys.name.clone(),
+            observed: sys.compiled.observed.clone(),
+            names: sys.compiled.observed_names.clone(),
+            layout: sys.compiled.layout,
+            parameter_names: sys.parameter_index(),
+            differential: sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
+            t: run.t,
+            u: run.u,
+            up: run.up,
+            segments: run.segments,
+            stats: run.stats,
+            init: self.report.clone(),
+        }))
+    }
+
+    /// Integrates one segment from `start` with `params`, appending its points to
+    /// `run` (the first one included); returns where dynamic state selection stopped
+    /// it, if it did, with the new selections.
+    #[allow(clippy::too_many_arguments)]
+    fn integrate_segment(
+        &self,
+        params: &[f64],
+        (t0, t_end): (f64, f64),
+        (u0, up0): (&[f64], &[f64]),
+        output_times: Option<Vec<f64>>,
+        options: &SolverOptions,
+        observer: &mut Observer<'_>,
+        run: &mut Run,
+        watched: bool,
+    ) -> Result<SegmentEnd, Error> {
+        let sys = self.sys;
         let specialized;
         let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
-            specialized = sys.compiled.specialize(&self.params);
+            specialized = sys.compiled.specialize(params);
             &specialized
         } else {
             &sys.compiled
         };
-        let n = self.u0.len();
+        let n = u0.len();
         let (linear_solver, extended) = match options.linear_solver {
             LinearSolverChoice::Auto if n <= 24 => (LinearSolver::Dense, false),
             LinearSolverChoice::Auto | LinearSolverChoice::Sparse => {
@@ -376,48 +831,71 @@ impl<'a> DaeProblem<'a> {
             linear_solver,
             calc_ic: false,
         };
-        let output = match &options.output_times {
-            Some(times) => {
-                let mut ts: Vec<f64> = times
-                    .iter()
-                    .copied()
-                    .filter(|&t| t > self.tspan.0 && t <= self.tspan.1)
-                    .collect();
-                ts.sort_by(f64::total_cmp);
-                ts.dedup();
-                if ts.last() != Some(&self.tspan.1) {
-                    ts.push(self.tspan.1);
-                }
-                OutputMode::Times(ts)
-            }
-            None => OutputMode::EveryStep {
-                t_end: self.tspan.1,
-            },
+        let output = match output_times {
+            Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
+            _ => OutputMode::EveryStep { t_end },
         };
-        let mut f = CompiledFunctions::new(c, &self.params, extended);
-        let mut t_out = Vec::new();
-        let mut u_out = Vec::new();
-        let mut up_out = Vec::new();
-        let mut steps_left = options.max_points;
+        let mut f = CompiledFunctions::new(c, params, extended);
+        let first = run.t.len();
         let mut exceeded = None;
-        let result = ida::integrate(
+        let mut decision = None;
+        // The last step, where a failed integration may be taken up again.
+        let mut last: Option<(f64, Vec<f64>, Vec<f64>)> = None;
+        // Steps in a row too short to advance: the integration stalls at a singular
+        // configuration.
+        let shortest = STALL_STEP * (t_end - t0).abs().max(f64::MIN_POSITIVE);
+        let (mut short_steps, mut stalled) = (0usize, None);
+        let mut degraded = None;
+        let mut monitor = |t: f64, y: &[f64], yp: &[f64]| {
+            if let Some((tl, _, _)) = &last {
+                if t - tl < shortest {
+                    short_steps += 1;
+                    if short_steps > STALL_STEPS {
+                        stalled = Some(t);
+                        return false;
+                    }
+                } else {
+                    short_steps = 0;
+                }
+            }
+            if watched {
+                if dynamic::static_degraded(observer, &sys.dynamic_candidates, t, y, yp, params) {
+                    degraded = Some(t);
+                    return false;
+                }
+                return true;
+            }
+            decision = dynamic::check(observer, &sys.dynamic, t, y, yp, params);
+            match &mut last {
+                Some((tl, yl, ypl)) => {
+                    *tl = t;
+                    yl.copy_from_slice(y);
+                    ypl.copy_from_slice(yp);
+                }
+                None => last = Some((t, y.to_vec(), yp.to_vec())),
+            }
+            decision.is_none()
+        };
+        let dynamic = !sys.dynamic.is_empty() || watched;
+        let result = ida::integrate_monitored(
             &mut f,
-            self.tspan.0,
-            &self.u0,
-            &self.up0,
+            t0,
+            u0,
+            up0,
             &settings,
             &output,
             &mut |t, u, up| {
-                if steps_left == 0 {
+                if run.points_left == 0 {
                     exceeded = Some(t);
                     return false;
                 }
-                steps_left -= 1;
-                t_out.push(t);
-                u_out.extend_from_slice(u);
-                up_out.extend_from_slice(up);
+                run.points_left -= 1;
+                run.t.push(t);
+                run.u.extend_from_slice(u);
+                run.up.extend_from_slice(up);
                 true
             },
+            if dynamic { Some(&mut monitor) } else { None },
         );
         if let Some(t) = exceeded {
             return Err(SolveError {
@@ -431,43 +909,198 @@ impl<'a> DaeProblem<'a> {
             }
             .into());
         }
-        let stats = result.map_err(|e| SolveError {
-            model: sys.name.clone(),
-            t: e.t,
-            flag: e.flag.clone(),
-            message: e.message.clone(),
-        })?;
-        if options.project_outputs {
-            let n = self.u0.len();
-            let mut plain = CompiledFunctions::new(c, &self.params, false);
-            let found = super::project::Projection::new(
-                &mut plain,
-                &sys.mass_matrix_diagonal,
-                self.tspan.0,
-                &self.u0,
-                &self.up0,
-            );
-            if let Some(mut projection) = found {
-                for (k, &t) in t_out.iter().enumerate() {
-                    let span = k * n..(k + 1) * n;
-                    projection.apply(&mut plain, t, &mut u_out[span.clone()], &up_out[span]);
-                }
-            }
+        if let Some(t) = degraded {
+            return Ok(SegmentEnd::StaticDegraded { t });
         }
-        Ok(Solution::new(
-            sys.name.clone(),
-            c.observed.clone(),
-            c.observed_names.clone(),
-            c.layout,
-            self.params.clone(),
-            sys.parameter_index(),
-            sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
-            t_out,
-            u_out,
-            up_out,
-            stats,
-            self.report.clone(),
-        ))
+        let integrated = match result {
+            Ok(r) => r,
+            Err(e) if watched => return Ok(SegmentEnd::StaticDegraded { t: e.t }),
+            Err(e) => {
+                let error: Error = SolveError {
+                    model: sys.name.clone(),
+                    t: e.t,
+                    flag: e.flag.clone(),
+                    message: e.message.clone(),
+                }
+                .into();
+                let singular = matches!(e.flag.as_str(), "IDA_CONV_FAIL" | "IDA_ERR_FAIL");
+                if dynamic && singular {
+                    // Points reported after the last step (interpolated outputs) are
+                    // dropped: the integration is taken up again from that step.
+                    if let Some((tl, _, _)) = &last {
+                        while run.t.len() > first && run.t.last().is_some_and(|&t| t > *tl) {
+                            run.t.pop();
+                            run.u.truncate(run.t.len() * n);
+                            run.up.truncate(run.t.len() * n);
+                        }
+                    }
+                    if options.project_outputs {
+                        project(
+                            c,
+                            params,
+                            &sys.mass_matrix_diagonal,
+                            (t0, u0, up0),
+                            run,
+                            first,
+                        );
+                    }
+                    return Ok(SegmentEnd::Failed { error, last });
+                }
+                return Err(error);
+            }
+        };
+        run.stats.add(&integrated.stats);
+        // Where the selection changes, the segment ends with a point of its own.
+        if let Some((t, y, yp)) = &integrated.stopped {
+            run.push(t.to_owned(), y, yp, sys)?;
+        }
+        if options.project_outputs {
+            project(
+                c,
+                params,
+                &sys.mass_matrix_diagonal,
+                (t0, u0, up0),
+                run,
+                first,
+            );
+        }
+        if let Some(t) = stalled {
+            return Ok(SegmentEnd::Failed {
+                error: SolveError {
+                    model: sys.name.clone(),
+                    t,
+                    flag: "STALLED".into(),
+                    message: format!(
+                        "more than {STALL_STEPS} steps in a row shorter than {} (a singular \
+                         configuration?)",
+                        crate::names::number(shortest)
+                    ),
+                }
+                .into(),
+                last,
+            });
+        }
+        Ok(match integrated.stopped {
+            Some((t, y, yp)) => SegmentEnd::Switch {
+                t,
+                y,
+                yp,
+                decision: decision.expect("the monitor stopped it"),
+            },
+            None => SegmentEnd::Done,
+        })
+    }
+}
+
+/// Solves the algebraic unknowns of the points `first..` of `run` again from the
+/// constraints (see [`SolverOptions::project_outputs`]); the segment started at `start`.
+fn project(
+    c: &CompiledDae,
+    params: &[f64],
+    mass: &[f64],
+    (t0, u0, up0): (f64, &[f64], &[f64]),
+    run: &mut Run,
+    first: usize,
+) {
+    let n = u0.len();
+    let mut plain = CompiledFunctions::new(c, params, false);
+    let Some(mut projection) = super::project::Projection::new(&mut plain, mass, t0, u0, up0)
+    else {
+        return;
+    };
+    for k in first..run.t.len() {
+        let span = k * n..(k + 1) * n;
+        projection.apply(
+            &mut plain,
+            run.t[k],
+            &mut run.u[span.clone()],
+            &run.up[span],
+        );
+    }
+}
+
+/// Why a run of segments stopped early.
+enum Degraded {
+    /// The watched static choice of states degraded at `t`.
+    Static { t: f64 },
+    /// Anything else.
+    Error(Error),
+}
+
+/// How the integration of a segment ended.
+enum SegmentEnd {
+    /// The watched static choice of states degraded (or the integration failed) at `t`.
+    StaticDegraded { t: f64 },
+    /// At its end time.
+    Done,
+    /// Dynamic state selection chose other states here.
+    Switch {
+        t: f64,
+        y: Vec<f64>,
+        yp: Vec<f64>,
+        decision: dynamic::Decision,
+    },
+    /// The integrator failed where the selection is good (a singular configuration of
+    /// the constraints themselves); `last` is its last step.
+    Failed {
+        error: Error,
+        last: Option<(f64, Vec<f64>, Vec<f64>)>,
+    },
+}
+
+/// A step shorter than this fraction of the span makes no progress.
+const STALL_STEP: f64 = 1e-9;
+/// So many such steps in a row stall the integration.
+const STALL_STEPS: usize = 200;
+/// Relaxation of the tolerances across a singular configuration.
+const BRIDGE_RELAXATION: f64 = 10.0;
+/// The loosest relative tolerance a crossing uses.
+const BRIDGE_RTOL: f64 = 1e-5;
+/// Length of the stretch integrated with relaxed tolerances, as a fraction of the span.
+const BRIDGE_LENGTH: f64 = 2e-4;
+/// Most singular configurations crossed in one run.
+const MAX_BRIDGES: usize = 1000;
+
+/// The points and statistics of a run of segments.
+struct Run {
+    t: Vec<f64>,
+    u: Vec<f64>,
+    up: Vec<f64>,
+    segments: Vec<Segment>,
+    stats: IdaStats,
+    points_left: usize,
+}
+
+impl Run {
+    /// Keeps the first `k` points.
+    fn truncate(&mut self, k: usize) {
+        let n = if self.t.is_empty() {
+            0
+        } else {
+            self.u.len() / self.t.len()
+        };
+        self.points_left += self.t.len().saturating_sub(k);
+        self.t.truncate(k);
+        self.u.truncate(k * n);
+        self.up.truncate(k * n);
+    }
+
+    /// Appends a point.
+    fn push(&mut self, t: f64, y: &[f64], yp: &[f64], sys: &SimplifiedSystem) -> Result<(), Error> {
+        if self.points_left == 0 {
+            return Err(SolveError {
+                model: sys.name.clone(),
+                t,
+                flag: "MAX_POINTS".into(),
+                message: "more reported points than SolverOptions::max_points".into(),
+            }
+            .into());
+        }
+        self.points_left -= 1;
+        self.t.push(t);
+        self.u.extend_from_slice(y);
+        self.up.extend_from_slice(yp);
+        Ok(())
     }
 }
 

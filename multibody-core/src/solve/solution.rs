@@ -23,47 +23,88 @@ pub struct Solution {
     /// Names of the observed outputs and their lookup, shared with the compiled system.
     names: Arc<NameIndex>,
     layout: InputLayout,
-    params: Vec<f64>,
-    /// Names of the tunable parameters (the order of `params`), shared likewise.
+    /// Names of the tunable parameters (the order of the segments' values), shared
+    /// likewise.
     parameter_names: Arc<NameIndex>,
     differential: Vec<bool>,
     t: Vec<f64>,
     u: Vec<f64>,
     up: Vec<f64>,
+    /// Stretches of the points with their parameter values (several where dynamic state
+    /// selection changed its selection parameters), in order.
+    segments: Vec<Segment>,
     stats: IdaStats,
     init: InitReport,
 }
 
+/// A stretch of a solution's points computed with the same parameter values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    /// The first point of the segment (the previous one ends just before it; two
+    /// segments meet at a time that both hold, the left and the right limit).
+    pub first: usize,
+    /// The parameter values.
+    pub params: Vec<f64>,
+}
+
+/// What a solution is made of (see [`Solution::new`]).
+pub(crate) struct SolutionParts {
+    /// The model's name.
+    pub model: String,
+    /// The compiled observed function.
+    pub observed: Arc<Tape>,
+    /// The names of its outputs.
+    pub names: Arc<NameIndex>,
+    /// The layout of its inputs.
+    pub layout: InputLayout,
+    /// The names of the tunable parameters.
+    pub parameter_names: Arc<NameIndex>,
+    /// Per unknown: whether it is differential (interpolated by cubic Hermite).
+    pub differential: Vec<bool>,
+    /// The reported times, unknowns and derivatives (point-major).
+    pub t: Vec<f64>,
+    /// Unknowns.
+    pub u: Vec<f64>,
+    /// Their derivatives.
+    pub up: Vec<f64>,
+    /// Segments (at least one, the first starting at point 0).
+    pub segments: Vec<Segment>,
+    /// Integrator statistics.
+    pub stats: IdaStats,
+    /// What the initialization did.
+    pub init: InitReport,
+}
+
 impl Solution {
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new(
-        model: String,
-        observed: Arc<Tape>,
-        names: Arc<NameIndex>,
-        layout: InputLayout,
-        params: Vec<f64>,
-        parameter_names: Arc<NameIndex>,
-        differential: Vec<bool>,
-        t: Vec<f64>,
-        u: Vec<f64>,
-        up: Vec<f64>,
-        stats: IdaStats,
-        init: InitReport,
-    ) -> Solution {
+    pub(crate) fn new(p: SolutionParts) -> Solution {
+        debug_assert!(p.segments.first().is_some_and(|s| s.first == 0));
         Solution {
-            model,
-            observed,
-            names,
-            layout,
-            params,
-            parameter_names,
-            differential,
-            t,
-            u,
-            up,
-            stats,
-            init,
+            model: p.model,
+            observed: p.observed,
+            names: p.names,
+            layout: p.layout,
+            parameter_names: p.parameter_names,
+            differential: p.differential,
+            t: p.t,
+            u: p.u,
+            up: p.up,
+            segments: p.segments,
+            stats: p.stats,
+            init: p.init,
         }
+    }
+
+    /// The stretches of points computed with the same parameter values: one, unless
+    /// dynamic state selection changed its selection during the run.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// The segment of point `k`.
+    fn segment_of(&self, k: usize) -> usize {
+        self.segments
+            .partition_point(|s| s.first <= k)
+            .saturating_sub(1)
     }
 
     /// The model's name.
@@ -105,7 +146,7 @@ impl Solution {
     pub fn parameter(&self, name: &str) -> Result<f64, SolutionError> {
         self.parameter_names
             .position(name)
-            .and_then(|k| self.params.get(k).copied())
+            .and_then(|k| self.segments[0].params.get(k).copied())
             .ok_or_else(|| SolutionError::UnknownParameter {
                 name: name.to_string(),
                 suggestions: self.parameter_names.closest(name, 3),
@@ -171,12 +212,18 @@ impl Solution {
         Ok(())
     }
 
-    fn inputs(&self) -> Vec<f64> {
+    /// The inputs of the observed function with the parameter values of segment `seg`.
+    fn inputs(&self, seg: usize) -> Vec<f64> {
         let mut inputs = vec![0.0; self.layout.len()];
-        for (j, &p) in self.params.iter().enumerate().take(self.layout.n_params) {
+        self.set_params(seg, &mut inputs);
+        inputs
+    }
+
+    fn set_params(&self, seg: usize, inputs: &mut [f64]) {
+        let params = &self.segments[seg].params;
+        for (j, &p) in params.iter().enumerate().take(self.layout.n_params) {
             inputs[self.layout.param(j)] = p;
         }
-        inputs
     }
 
     /// The values of a variable at the reported times.
@@ -193,10 +240,15 @@ impl Solution {
             .collect::<Result<_, _>>()?;
         let n = self.layout.n;
         let mut ws = self.observed.workspace();
-        let mut inputs = self.inputs();
+        let mut seg = 0;
+        let mut inputs = self.inputs(seg);
         let mut out = vec![0.0; self.observed.n_outputs()];
         let mut series = vec![Vec::with_capacity(self.t.len()); names.len()];
         for (k, &t) in self.t.iter().enumerate() {
+            if self.segments.get(seg + 1).is_some_and(|s| s.first <= k) {
+                seg = self.segment_of(k);
+                self.set_params(seg, &mut inputs);
+            }
             let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
             let r = self.evaluate(t, u, up, &mut ws, &mut inputs, &mut out);
             self.collect(&idx, names, t, &out, r, &mut series)?;
@@ -210,7 +262,7 @@ impl Solution {
         let k = self.t.len() - 1;
         let n = self.layout.n;
         let mut ws = self.observed.workspace();
-        let mut inputs = self.inputs();
+        let mut inputs = self.inputs(self.segment_of(k));
         let mut out = vec![0.0; self.observed.n_outputs()];
         let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
         let r = self.evaluate(self.t[k], u, up, &mut ws, &mut inputs, &mut out);
@@ -221,7 +273,7 @@ impl Solution {
 
     /// The unknowns and derivatives interpolated at `t`: cubic Hermite for
     /// differential unknowns, linear for algebraic ones.
-    fn interpolate(&self, t: f64) -> Result<(Vec<f64>, Vec<f64>), SolutionError> {
+    fn interpolate(&self, t: f64) -> Result<(Vec<f64>, Vec<f64>, usize), SolutionError> {
         let (t0, t1) = (self.t[0], *self.t.last().expect("non-empty"));
         if !(t >= t0 && t <= t1) {
             return Err(SolutionError::OutOfRange { t, t0, t1 });
@@ -232,7 +284,7 @@ impl Solution {
             p => (p - 1).min(self.t.len().saturating_sub(2)),
         };
         if self.t.len() == 1 {
-            return Ok((self.u[..n].to_vec(), self.up[..n].to_vec()));
+            return Ok((self.u[..n].to_vec(), self.up[..n].to_vec(), 0));
         }
         let (ta, tb) = (self.t[k], self.t[k + 1]);
         let h = tb - ta;
@@ -266,7 +318,7 @@ impl Solution {
                 up[i] = (1.0 - s) * pa[i] + s * pb[i];
             }
         }
-        Ok((u, up))
+        Ok((u, up, k))
     }
 
     /// The value of a variable at any time of the solved interval (interpolated).
@@ -281,11 +333,14 @@ impl Solution {
             .map(|n| self.lookup(n))
             .collect::<Result<_, _>>()?;
         let mut ws = self.observed.workspace();
-        let mut inputs = self.inputs();
+        let mut inputs = self.inputs(0);
         let mut out = vec![0.0; self.observed.n_outputs()];
         let mut series = vec![Vec::with_capacity(times.len()); names.len()];
         for &t in times {
-            let (u, up) = self.interpolate(t)?;
+            let (u, up, k) = self.interpolate(t)?;
+            if self.segments.len() > 1 {
+                self.set_params(self.segment_of(k), &mut inputs);
+            }
             let r = self.evaluate(t, &u, &up, &mut ws, &mut inputs, &mut out);
             self.collect(&idx, names, t, &out, r, &mut series)?;
         }
