@@ -646,3 +646,47 @@ fn initialization_iterates_on_joint_coordinates_only() {
         }
     }
 }
+
+#[test]
+fn initialization_keeps_the_loop_angles_within_half_a_turn_of_their_starts() {
+    // With j1 and j2 given, the planar four-bar's other angles are found by Newton from
+    // their start values (0). Without care, Newton's first steps carry them whole turns
+    // away (j5 = 7.35 where 1.07 is the same configuration). Every angle must come out
+    // within half a turn of its start, and the loop closed.
+    let ssys = structural_simplify(&fourbar_example::fourbar()).unwrap();
+    for (j1, j2) in [
+        (0.5, 1.0),
+        (0.5, 2.0),
+        (1.0, 2.0),
+        (2.0, -2.5),
+        (-2.0, -2.5),
+    ] {
+        let problem = DaeProblem::new(&ssys, &[("j1.phi", j1), ("j2.phi", j2)], (0.0, 0.01))
+            .unwrap_or_else(|e| panic!("({j1}, {j2}): {e}"));
+        let sol = problem.solve(&SolverOptions::default()).unwrap();
+        for name in ["j1.phi", "j2.phi", "j3.phi", "j5.phi"] {
+            let phi = sol.get(name).unwrap()[0];
+            assert!(
+                phi.abs() <= std::f64::consts::PI,
+                "({j1}, {j2}): {name} = {phi}, more than half a turn from its start 0"
+            );
+        }
+        // Closed: the sum of the loop's rotations is a whole number of turns (the
+        // planar loop constraint j4 takes the rest), and the given angles are kept.
+        let get = |n: &str| sol.get(n).unwrap()[0];
+        assert!((get("j1.phi") - j1).abs() < 1e-12 && (get("j2.phi") - j2).abs() < 1e-12);
+        let end = sol
+            .sample(&["j4.frame_a.r_0[1]", "j4.frame_a.r_0[2]"], &[0.0])
+            .unwrap();
+        let other = sol
+            .sample(&["j4.frame_b.r_0[1]", "j4.frame_b.r_0[2]"], &[0.0])
+            .unwrap();
+        for i in 0..2 {
+            assert!(
+                (end[i][0] - other[i][0]).abs() < 1e-9,
+                "({j1}, {j2}) open by {}",
+                end[i][0] - other[i][0]
+            );
+        }
+    }
+}

@@ -371,6 +371,15 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             conditions,
         });
     }
+    nearest_turns(&compiled, &mut inputs, layout, &schedule.iteration, |l| {
+        sys.slot_of
+            .get(l)
+            .filter(|&s| sys.slots[s].order == 0)
+            .and_then(|s| {
+                let v = sys.slots[s].var;
+                input.guesses[v].or(input.starts[v])
+            })
+    });
     let mut values = vec![0.0; unknowns.len()];
     let mut ws = compiled.observed.workspace();
     compiled
@@ -411,6 +420,42 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         iterations: outcome.iterations,
         iteration_variables,
     })
+}
+
+/// Iteration variables that converged whole turns (2 pi) away from their guess or start
+/// value (a joint angle that Newton's first steps carried round) are brought back by
+/// those turns where the system is as well solved there: the solution nearest the
+/// start, as a user who gave it expects.
+fn nearest_turns(
+    compiled: &crate::codegen::dae::CompiledDae,
+    inputs: &mut [f64],
+    layout: crate::codegen::dae::InputLayout,
+    iteration: &[Id],
+    start: impl Fn(Id) -> Option<f64>,
+) {
+    use std::f64::consts::{PI, TAU};
+    let residual = &compiled.residual;
+    let mut ws = residual.workspace();
+    let mut out = vec![0.0; residual.n_outputs()];
+    let mut worst = |inputs: &[f64], ws: &mut crate::codegen::Workspace| -> f64 {
+        match residual.eval(inputs, ws, &mut out) {
+            Ok(()) => out.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            Err(_) => f64::INFINITY,
+        }
+    };
+    let converged = worst(inputs, &mut ws);
+    for (k, &l) in iteration.iter().enumerate() {
+        let Some(s) = start(l) else { continue };
+        let slot = layout.u(k);
+        let x = inputs[slot];
+        if !((x - s).abs() > PI) {
+            continue;
+        }
+        inputs[slot] = x + TAU * ((s - x) / TAU).round();
+        if !(worst(inputs, &mut ws) <= 10.0 * converged + 1e-12) {
+            inputs[slot] = x;
+        }
+    }
 }
 
 /// The first guess of an iteration variable: its guess, its start value, or 0.
