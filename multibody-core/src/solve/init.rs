@@ -448,11 +448,13 @@ fn nearest_turns(
         let Some(s) = start(l) else { continue };
         let slot = layout.u(k);
         let x = inputs[slot];
-        if !((x - s).abs() > PI) {
+        let off = (x - s).abs();
+        if off.is_nan() || off <= PI {
             continue;
         }
         inputs[slot] = x + TAU * ((s - x) / TAU).round();
-        if !(worst(inputs, &mut ws) <= 10.0 * converged + 1e-12) {
+        let there = worst(inputs, &mut ws);
+        if there.is_nan() || there > 10.0 * converged + 1e-12 {
             inputs[slot] = x;
         }
     }
