@@ -17,7 +17,7 @@ pub const VARIABLE_MODIFIERS: &[&str] = &[
 ];
 
 /// Attributes a parameter declaration accepts.
-pub const PARAMETER_MODIFIERS: &[&str] = &["fixed", "unit", "evaluate"];
+pub const PARAMETER_MODIFIERS: &[&str] = &["fixed", "unit", "evaluate", "min", "max"];
 
 /// Names the generated code uses for itself.
 const RESERVED: &[&str] = &["time", "self", "path"];

@@ -44,8 +44,8 @@ component! {
     /// quaternion).
     #[type_name = "MultiBody.Parts.Body"]
     pub struct Body {
-        /// Mass \[kg\].
-        parameter m: f64 = 1.0;
+        /// Mass \[kg\] (at least 0).
+        parameter m(min = 0.0): f64 = 1.0;
         /// Vector from `frame_a` to the centre of mass, resolved in `frame_a` \[m\].
         parameter r_CM: [f64; 3] = [0.0, 0.0, 0.0];
         /// Inertia about the centre of mass, element (1,1), axes parallel to `frame_a` \[kg.m2\].
@@ -99,7 +99,6 @@ component! {
                 valid_sequence(sequence_angle_states),
                 invalid_sequence("sequence_angle_states", sequence_angle_states)
             );
-            assert(m.ge(0.0), "the mass m must not be negative");
             assert(
                 inertia_is_physical(I_11, I_22, I_33, I_21, I_31, I_32),
                 "the inertia (I_11, I_22, I_33, I_21, I_31, I_32) must be positive semi-definite"

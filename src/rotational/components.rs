@@ -21,8 +21,8 @@ component! {
     /// A rigid 1-D rotational inertia (MSL `Rotational.Components.Inertia`).
     #[type_name = "Rotational.Inertia"]
     pub struct Inertia {
-        /// Moment of inertia [kg.m2].
-        parameter J: f64 = 1.0;
+        /// Moment of inertia [kg.m2] (at least 0).
+        parameter J(min = 0.0): f64 = 1.0;
         /// Start value of the angle [rad] (a guess, or the assumed initial condition
         /// when `phi` is a state).
         structural phi_start: f64 = 0.0;
@@ -41,7 +41,6 @@ component! {
         /// Absolute angular acceleration [rad/s2].
         variable a: Real;
         equation {
-            assert(J.ge(0.0), "the moment of inertia J must not be negative");
             phi = flange_a.phi;
             phi = flange_b.phi;
             w = der(phi);

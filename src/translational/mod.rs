@@ -53,8 +53,8 @@ component! {
     /// A sliding mass of length `L` (MSL `Translational.Components.Mass`).
     #[type_name = "Translational.Mass"]
     pub struct Mass {
-        /// Mass [kg].
-        parameter m: f64 = 1.0;
+        /// Mass [kg] (at least 0).
+        parameter m(min = 0.0): f64 = 1.0;
         /// Length of the mass (the flanges are `L/2` from its centre) [m].
         parameter L: f64 = 0.0;
         /// Start value of the position [m].
@@ -74,7 +74,6 @@ component! {
         /// Absolute acceleration [m/s2].
         variable a: Real;
         equation {
-            assert(m.ge(0.0), "the mass m must not be negative");
             flange_a.s = s - L / 2.0;
             flange_b.s = s + L / 2.0;
             v = der(s);

@@ -101,9 +101,9 @@ pub struct FlatAssertion {
     /// What is wrong when it does not hold.
     pub message: SharedText,
     /// The path of the component that asserts it (empty for the model itself).
-    pub component: String,
+    pub component: Arc<String>,
     /// The component's type.
-    pub type_name: String,
+    pub type_name: SharedText,
 }
 
 /// A flattened model: numbered variables and parameters, and scalar equations in a local
@@ -249,19 +249,6 @@ impl<'g> LockedStores<'g> {
     }
 }
 
-/// The distinct stores of the systems in `order`, sorted by number.
-fn stores_of(order: &[&System]) -> Vec<ExprStore> {
-    let mut out: Vec<ExprStore> = Vec::new();
-    for s in order {
-        let st = s.store();
-        if !out.iter().any(|o| o.same(st)) {
-            out.push(st.clone());
-        }
-    }
-    out.sort_by_key(ExprStore::id);
-    out
-}
-
 struct Flattener<'g, 's> {
     stores: LockedStores<'g>,
     flat: FlatSystem,
@@ -300,23 +287,6 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
 /// prefetched.
 const PREFETCH_AHEAD: usize = 4;
 
-/// The first component of the tree (depth first) built with structural parameters it
-/// rejects.
-fn invalid_component(sys: &System) -> Option<ModelError> {
-    if !sys.invalid.is_empty() {
-        return Some(ModelError::InvalidComponent {
-            component: if sys.path.is_empty() {
-                sys.name.clone()
-            } else {
-                sys.path.clone()
-            },
-            type_name: sys.type_name.clone(),
-            message: sys.invalid.join("; "),
-        });
-    }
-    sys.subsystems.iter().find_map(invalid_component)
-}
-
 /// Where an expression being translated comes from, in words.
 fn describe_place(origin: &Origin, stores: &LockedStores<'_>) -> String {
     match origin {
@@ -349,26 +319,35 @@ fn union_find_root(parent: &mut [usize], mut x: usize) -> usize {
 /// flows zero), and checks names and connector classes. The balance check is separate
 /// ([`super::balance::check_balance`]).
 pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
-    // Components built with structural parameters they reject (their equations may
-    // make no sense, so they are reported before anything else).
-    if let Some(e) = invalid_component(sys) {
-        return Err(e);
-    }
-    // The graph builds expressions (residues), in the model's store: before the stores
-    // are locked.
-    let graph = {
-        let _current = sys.store().enter();
-        super::connection_graph::resolve(sys)?
-    };
     // The tree in the order its declarations are numbered, and the sizes of the flat
     // vectors (growing them by doubling copies a large model's declarations several
-    // times over).
+    // times over); on the way, the first component built with structural parameters
+    // it rejects (its equations may make no sense, so it is reported before anything
+    // else) and the stores of the model's expressions.
     let (mut n_variables, mut n_parameters, mut n_equations) = (0, 0, 0);
     // Connections add at most one equation per connector variable.
     let (mut n_connectors, mut n_connector_variables, mut n_connector_path_bytes) = (0, 0, 0);
     let mut stack = vec![sys];
     let mut order = Vec::new();
+    let mut stores: Vec<ExprStore> = Vec::new();
     while let Some(s) = stack.pop() {
+        if !s.invalid_parameters().is_empty() {
+            return Err(ModelError::InvalidComponent {
+                component: if s.path.is_empty() {
+                    s.name.clone()
+                } else {
+                    s.path.clone()
+                },
+                type_name: s.type_name.clone(),
+                message: s.invalid_parameters().join("; "),
+            });
+        }
+        // Nearly always one store (every system of a model shares it).
+        if stores.last().is_none_or(|l| !l.same(s.store()))
+            && !stores.iter().any(|o| o.same(s.store()))
+        {
+            stores.push(s.store().clone());
+        }
         order.push(s);
         n_variables += s.variables.len();
         n_parameters += s.parameters.len();
@@ -382,7 +361,13 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             stack.push(sub);
         }
     }
-    let stores = stores_of(&order);
+    stores.sort_by_key(ExprStore::id);
+    // The graph builds expressions (residues), in the model's store: before the stores
+    // are locked.
+    let graph = {
+        let _current = sys.store().enter();
+        super::connection_graph::resolve(sys)?
+    };
     let n_symbols = crate::expr::symbols::bound();
     let mut f = Flattener {
         stores: LockedStores::lock(&stores),
@@ -466,7 +451,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                 });
             }
         }
-        for a in &s.assertions {
+        for a in s.assertions() {
             let origin = Origin::Assertion {
                 path: path.clone(),
                 condition: a.condition,
@@ -493,8 +478,9 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             f.flat.assertions.push(FlatAssertion {
                 condition,
                 message: a.message.clone(),
-                component: s.path.clone(),
-                type_name: s.type_name.clone(),
+                component: path.clone(),
+                // Type names are few: kept once for the process, like symbols.
+                type_name: SharedText::from(crate::expr::symbols::intern(&s.type_name).1),
             });
         }
         for (var, der) in &s.derivative_rules {

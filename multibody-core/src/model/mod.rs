@@ -21,8 +21,8 @@ pub use flatten::{
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
 pub use system::{
-    Assertion, Component, Condition, Connection, Equation, StructuralValue, System, join_path,
-    show_values,
+    Assertion, Checks, Component, Condition, Connection, Equation, StructuralValue, System,
+    join_path, show_values,
 };
 pub use text::{EquationText, FlatOrigins};
 pub use typed::{

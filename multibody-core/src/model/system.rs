@@ -83,14 +83,22 @@ pub struct System {
     /// `radius`, ...; booleans as 0 or 1, an unset `Option` left out), by local name:
     /// what diagnoses of mechanisms and rendering read.
     pub structural: Vec<(String, Vec<f64>)>,
-    /// Conditions on the component's tunable parameters, checked when a problem's
-    /// parameter values are known (Modelica's `assert` on parameters).
-    pub assertions: Vec<Assertion>,
-    /// Conditions on its structural parameters that failed while it was built: each a
-    /// message naming the parameter and its value.
-    pub invalid: Vec<String>,
+    /// The component's conditions on its parameters (see [`System::assert`]); most
+    /// components have none.
+    pub checks: Option<Box<Checks>>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
+}
+
+/// The conditions a component puts on its parameters (see [`System::assert`]).
+#[derive(Clone, Debug, Default)]
+pub struct Checks {
+    /// Conditions on tunable parameters, checked when a problem's parameter values are
+    /// known (Modelica's `assert` on parameters).
+    pub assertions: Vec<Assertion>,
+    /// Conditions on structural parameters that failed while the component was built:
+    /// each a message naming the parameter and its value.
+    pub invalid: Vec<String>,
 }
 
 /// A condition on tunable parameters that must hold (see [`System::assert`]).
@@ -175,8 +183,7 @@ impl System {
             subsystems: Vec::new(),
             connections: Vec::new(),
             derivative_rules: Vec::new(),
-            assertions: Vec::new(),
-            invalid: Vec::new(),
+            checks: None,
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -319,13 +326,35 @@ impl System {
     pub fn assert(&mut self, condition: impl Into<Condition>, message: impl Into<SharedText>) {
         match condition.into() {
             Condition::Now(true) => {}
-            Condition::Now(false) => self.invalid.push(message.into().to_string()),
+            Condition::Now(false) => self.invalid(message.into().to_string()),
             Condition::Parameters(e) => {
                 let condition = self.own(e);
                 let message = message.into();
-                self.assertions.push(Assertion { condition, message });
+                self.checks_mut()
+                    .assertions
+                    .push(Assertion { condition, message });
             }
         }
+    }
+
+    /// Records that a structural parameter has a value the component rejects
+    /// (`message` names it and its value).
+    pub fn invalid(&mut self, message: String) {
+        self.checks_mut().invalid.push(message);
+    }
+
+    fn checks_mut(&mut self) -> &mut Checks {
+        self.checks.get_or_insert_with(Box::default)
+    }
+
+    /// The messages of the structural parameters the component rejected.
+    pub fn invalid_parameters(&self) -> &[String] {
+        self.checks.as_ref().map_or(&[], |c| &c.invalid)
+    }
+
+    /// The component's conditions on its tunable parameters.
+    pub fn assertions(&self) -> &[Assertion] {
+        self.checks.as_ref().map_or(&[], |c| &c.assertions)
     }
 
     /// Adds a sub-component (or connector) instance named `local` and returns it.
@@ -417,7 +446,7 @@ impl System {
     pub fn record_structural(&mut self, name: &str, value: Option<Vec<f64>>) {
         if let Some(v) = value {
             if v.iter().any(|x| !x.is_finite()) {
-                self.invalid.push(format!(
+                self.invalid(format!(
                     "structural parameter `{name}` = {} is not finite",
                     show_values(&v)
                 ));

@@ -162,6 +162,11 @@ pub struct Parameter {
     /// and the parameter can no longer be changed without simplifying again
     /// (default: false).
     pub evaluate: bool,
+    /// Smallest value the parameter accepts (Modelica's `min`; default: -infinity). A
+    /// problem with a smaller value is rejected, naming the parameter.
+    pub min: f64,
+    /// Largest value the parameter accepts (Modelica's `max`; default: infinity).
+    pub max: f64,
     /// The interned symbol of `name`, recorded when declared in a system.
     pub(crate) symbol: Option<u32>,
 }
@@ -176,8 +181,22 @@ impl Parameter {
             description: SharedText::default(),
             unit: SharedText::default(),
             evaluate: false,
+            min: f64::NEG_INFINITY,
+            max: f64::INFINITY,
             symbol: None,
         }
+    }
+
+    /// Sets the smallest accepted value.
+    pub fn min(mut self, min: f64) -> Self {
+        self.min = min;
+        self
+    }
+
+    /// Sets the largest accepted value.
+    pub fn max(mut self, max: f64) -> Self {
+        self.max = max;
+        self
     }
 
     /// Sets whether the value is folded in at `structural_simplify` (see

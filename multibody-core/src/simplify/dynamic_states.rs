@@ -165,6 +165,8 @@ pub(crate) fn augment(
                     ),
                     unit: SharedText::default(),
                     evaluate: false,
+                    min: f64::NEG_INFINITY,
+                    max: f64::INFINITY,
                     symbol: None,
                 });
                 let zero = flat.arena.zero();

@@ -443,7 +443,7 @@ fn nearest_turns(
             Err(_) => f64::INFINITY,
         }
     };
-    let converged = worst(inputs, &mut ws);
+    let mut converged = None;
     for (k, &l) in iteration.iter().enumerate() {
         let Some(s) = start(l) else { continue };
         let slot = layout.u(k);
@@ -452,6 +452,7 @@ fn nearest_turns(
         if off.is_nan() || off <= PI {
             continue;
         }
+        let converged = *converged.get_or_insert_with(|| worst(inputs, &mut ws));
         inputs[slot] = x + TAU * ((s - x) / TAU).round();
         let there = worst(inputs, &mut ws);
         if there.is_nan() || there > 10.0 * converged + 1e-12 {

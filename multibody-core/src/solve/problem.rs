@@ -226,6 +226,32 @@ fn subsets(items: &[usize], size: usize, limit: usize) -> Vec<Vec<usize>> {
     }
 }
 
+/// Checks the parameter values `params` against the parameters' `min` and `max`.
+#[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
+fn check_ranges(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError> {
+    for (p, &v) in sys.parameters.iter().zip(params) {
+        let (below, above) = (v < p.min, v > p.max);
+        if below || above {
+            let (bound, which) = if below {
+                (p.min, "minimum")
+            } else {
+                (p.max, "maximum")
+            };
+            return Err(InitError::BadValue {
+                model: sys.name.clone(),
+                message: format!(
+                    "parameter `{}` = {} is {} its {which} {}",
+                    p.name,
+                    number(v),
+                    if below { "below" } else { "above" },
+                    number(bound)
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Checks the components' conditions on the parameter values `params`.
 #[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
 fn check_assertions(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError> {
@@ -247,8 +273,8 @@ fn check_assertions(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitEr
             .collect();
         return Err(InitError::AssertionFailed {
             model: sys.name.clone(),
-            component: a.component.clone(),
-            type_name: a.type_name.clone(),
+            component: a.component.to_string(),
+            type_name: a.type_name.to_string(),
             message: a.message.to_string(),
             values: values.join(", "),
         });
@@ -395,6 +421,7 @@ impl<'a> DaeProblem<'a> {
                 sys.parameters[j].name, params[j]
             )));
         }
+        check_ranges(sys, &params)?;
         check_assertions(sys, &params)?;
         let mut starts = Vec::with_capacity(sys.variables.len());
         let mut fixed = Vec::with_capacity(sys.variables.len());
