@@ -1,6 +1,6 @@
-//! Sensors, line forces, signal forces and point gravity, each simulated and checked
-//! against an independent result: a closed form, an invariant, or another formulation
-//! of the same mechanism.
+//! Sensors, line forces, signal forces, point gravity and `FixedRotation`, each simulated
+//! and checked against an independent result: a closed form, an invariant, or another
+//! formulation of the same mechanism.
 //!
 //! Conventions (MSL's): a frame's `R.T` maps world-resolved vectors into the frame
 //! (`v_frame = T v_world`). The references below use active rotation matrices `R = T'`
@@ -18,7 +18,9 @@ use multibody::forces::{
     Damper, Force, Spring, SpringDamperParallel, Torque, WorldForce, WorldTorque,
 };
 use multibody::joints::Revolute;
-use multibody::parts::{Body, Fixed, FixedTranslation, OrientationStates};
+use multibody::parts::{
+    Body, Fixed, FixedRotation, FixedTranslation, OrientationStates, RotationType,
+};
 use multibody::prelude::*;
 use multibody::sensors::{
     AbsolutePosition, AbsoluteVelocity, CutForce, CutTorque, Power, RelativeAngles,
@@ -1114,4 +1116,262 @@ fn point_gravity_kepler_orbit_keeps_its_invariants_and_period() {
     let k = sol.t().len() - 1;
     assert_vec("r after one period", period, pos[k], r0, 1e-6);
     assert_vec("v after one period", period, vel[k], v0, 1e-6);
+}
+
+// ---------------------------------------------------------------------------------------
+// FixedRotation.
+
+const FR_R: V3 = [0.5, 0.1, -0.2];
+const FR_P: V3 = [0.3, -0.2, 0.4];
+const FR_I: f64 = 0.01;
+
+/// The three ways to give a FixedRotation, each with its rotation matrix R (frame_b's
+/// axes resolved in frame_a, the columns) derived independently:
+/// - RotationAxis about (1, 1, 1) by 50 degrees: Rodrigues' formula;
+/// - TwoAxesVectors n_x = (1, 1, 0), n_y = (0, 1, 1): e_x = n_x / |n_x|,
+///   e_z = n_x x n_y / |.| = (1, -1, 1) / sqrt 3, e_y = e_z x e_x = (-1, 1, 2) / sqrt 6;
+/// - PlanarRotationSequence {3, 1, 2} by (30, 45, 60) degrees: about z, then the new x,
+///   then the newer y: R = Rz(30) Rx(45) Ry(60).
+fn fixed_rotations() -> Vec<(&'static str, FixedRotation, M3)> {
+    let s2 = 2f64.sqrt();
+    let s3 = 3f64.sqrt();
+    let s6 = 6f64.sqrt();
+    let e_x = [1.0 / s2, 1.0 / s2, 0.0];
+    let e_y = [-1.0 / s6, 1.0 / s6, 2.0 / s6];
+    let e_z = [1.0 / s3, -1.0 / s3, 1.0 / s3];
+    let deg = f64::to_radians;
+    vec![
+        (
+            "RotationAxis",
+            FixedRotation {
+                r: FR_R,
+                rotation_type: RotationType::RotationAxis,
+                n: [1.0, 1.0, 1.0],
+                angle: 50.0,
+                ..Default::default()
+            },
+            rot([1.0, 1.0, 1.0], deg(50.0)),
+        ),
+        (
+            "TwoAxesVectors",
+            FixedRotation {
+                r: FR_R,
+                rotation_type: RotationType::TwoAxesVectors,
+                n_x: [1.0, 1.0, 0.0],
+                n_y: [0.0, 1.0, 1.0],
+                ..Default::default()
+            },
+            std::array::from_fn(|i| [e_x[i], e_y[i], e_z[i]]),
+        ),
+        (
+            "PlanarRotationSequence",
+            FixedRotation {
+                r: FR_R,
+                rotation_type: RotationType::PlanarRotationSequence,
+                sequence: [3, 1, 2],
+                angles: [30.0, 45.0, 60.0],
+                ..Default::default()
+            },
+            mul(
+                &mul(&rot(EZ, deg(30.0)), &rot(EX, deg(45.0))),
+                &rot(EY, deg(60.0)),
+            ),
+        ),
+    ]
+}
+
+/// A pendulum about z at the origin (gravity -y) whose body (isotropic inertia, so
+/// turning it changes nothing) hangs from `link`'s far frame at r_CM = `p`: `link` is
+/// either a FixedRotation or nothing (`None`: the body on the joint).
+fn pendulum_through(link: Option<&FixedRotation>, reversed: bool, p: V3) -> System {
+    let mut model = system! {
+        name: "fr_pendulum";
+        world = World::default();
+        rev = Revolute { n: EZ };
+        body = Body { r_CM: p, I_11: FR_I, I_22: FR_I, I_33: FR_I };
+        connect(world.frame_b, rev.frame_a);
+    };
+    match link {
+        None => model.connect("rev.frame_b", "body.frame_a"),
+        Some(fr) => {
+            model.add("fr", fr);
+            let (near, far) = if reversed {
+                ("fr.frame_b", "fr.frame_a")
+            } else {
+                ("fr.frame_a", "fr.frame_b")
+            };
+            model.connect("rev.frame_b", near);
+            model.connect(far, "body.frame_a");
+        }
+    }
+    model
+}
+
+/// Compares a pendulum through a FixedRotation with the same pendulum with the rotation
+/// folded into the body's geometry (`p_folded`, in the joint's frame), and the
+/// FixedRotation's far frame with the joint frame moved by the rotation in closed form:
+/// `far_t(T_joint)` and `far_r(r_joint, T_joint)`.
+fn check_against_folded(
+    name: &str,
+    fr: &FixedRotation,
+    reversed: bool,
+    p_folded: V3,
+    far_t: impl Fn(&M3) -> M3,
+    far_r: impl Fn(V3, &M3) -> V3,
+) {
+    let start = [("rev.phi", 0.2), ("rev.w", 0.0)];
+    let t_end = 3.0;
+    let a = simulate(
+        &pendulum_through(Some(fr), reversed, FR_P),
+        &start,
+        t_end,
+        300,
+    );
+    let b = simulate(&pendulum_through(None, false, p_folded), &start, t_end, 300);
+    let (phi_a, phi_b) = (a.get("rev.phi").unwrap(), b.get("rev.phi").unwrap());
+    let far = if reversed { "fr.frame_a" } else { "fr.frame_b" };
+    let (t_joint, r_joint) = (rotation(&a, "rev.frame_b"), vector(&a, "rev.frame_b.r_0"));
+    let (t_far, r_far) = (rotation(&a, far), vector(&a, &format!("{far}.r_0")));
+    let mut swing = 0.0f64;
+    for (k, &t) in a.t().iter().enumerate() {
+        swing = swing.max((phi_a[k] - phi_a[0]).abs());
+        // Two integrations at rtol 1e-10 of the same pendulum (they agree to about
+        // 1e-12). A transposed rotation in the transmitted force or torque, or a lever
+        // arm resolved in the wrong frame, changes the torque about the joint by a
+        // fraction of m g |p| and the angle by far more than this.
+        assert!(
+            (phi_a[k] - phi_b[k]).abs() < 1e-7,
+            "{name}: rev.phi at {t}: {} through the FixedRotation, {} folded",
+            phi_a[k],
+            phi_b[k]
+        );
+        // Kinematics: algebraic in the same state.
+        assert_mat(
+            &format!("{name}: {far}.R.T"),
+            t,
+            &t_far[k],
+            &far_t(&t_joint[k]),
+            1e-12,
+        );
+        assert_vec(
+            &format!("{name}: {far}.r_0"),
+            t,
+            r_far[k],
+            far_r(r_joint[k], &t_joint[k]),
+            1e-12,
+        );
+    }
+    assert!(swing > 1.0, "{name}: the pendulum swung only {swing} rad");
+}
+
+/// FixedRotation behind a joint, all three rotation types, frame_a towards the joint:
+/// frame_b's T is R' T_a and frame_b.r_0 = frame_a.r_0 + T_a' r; the body at r_CM = p
+/// in frame_b is the body at r + R p in frame_a.
+#[test]
+fn fixed_rotation_behind_a_joint_matches_the_folded_geometry() {
+    for (name, fr, r) in fixed_rotations() {
+        let folded = add(FR_R, mv(&r, FR_P));
+        check_against_folded(
+            name,
+            &fr,
+            false,
+            folded,
+            |t_a| mul(&tr(&r), t_a),
+            |r_a, t_a| add(r_a, mv(&tr(t_a), FR_R)),
+        );
+    }
+}
+
+/// FixedRotation behind a joint connected the other way round (frame_b towards the
+/// joint, so frame_a's orientation is computed from frame_b's): frame_a's T is R T_b,
+/// frame_a.r_0 = frame_b.r_0 - T_a' r; the body at r_CM = p in frame_a is at
+/// R' (p - r) in frame_b.
+#[test]
+fn fixed_rotation_connected_backwards_matches_the_folded_geometry() {
+    for (name, fr, r) in fixed_rotations() {
+        let folded = mv(&tr(&r), sub(FR_P, FR_R));
+        check_against_folded(
+            name,
+            &fr,
+            true,
+            folded,
+            |t_b| mul(&r, t_b),
+            |r_b, t_b| sub(r_b, mv(&tr(&mul(&r, t_b)), FR_R)),
+        );
+    }
+}
+
+/// A pendulum hung from a FixedRotation on the world frame: world -> FixedRotation (r,
+/// R) -> revolute (axis n in the rotated frame) -> body (r_CM = p). Folded: world ->
+/// FixedTranslation (r) -> revolute with axis R n -> body at R p (isotropic inertia).
+/// Same motion (R Rot(n, phi) p = Rot(R n, phi) R p), and FixedRotation's frame_b is the
+/// constant (r, T = R').
+fn pendulum_under_a_fixed_rotation_on_the_world(axis: V3, angle_deg: f64) {
+    let n_joint = EX;
+    let p = [0.1, 0.0, 0.5];
+    let r = [0.2, 0.3, -0.1];
+    let rr = rot(axis, angle_deg.to_radians());
+    let through = system! {
+        name: "fr_on_world";
+        world = World::default();
+        fr = FixedRotation { r, n: axis, angle: angle_deg };
+        rev = Revolute { n: n_joint };
+        body = Body { r_CM: p, I_11: FR_I, I_22: FR_I, I_33: FR_I };
+        connect(world.frame_b, fr.frame_a);
+        connect(fr.frame_b, rev.frame_a);
+        connect(rev.frame_b, body.frame_a);
+    };
+    let folded = system! {
+        name: "fr_folded";
+        world = World::default();
+        shift = FixedTranslation { r };
+        rev = Revolute { n: mv(&rr, n_joint) };
+        body = Body { r_CM: mv(&rr, p), I_11: FR_I, I_22: FR_I, I_33: FR_I };
+        connect(world.frame_b, shift.frame_a);
+        connect(shift.frame_b, rev.frame_a);
+        connect(rev.frame_b, body.frame_a);
+    };
+    let start = [("rev.phi", 0.0), ("rev.w", 0.0)];
+    let a = simulate(&through, &start, 3.0, 300);
+    let b = simulate(&folded, &start, 3.0, 300);
+    let (phi_a, phi_b) = (a.get("rev.phi").unwrap(), b.get("rev.phi").unwrap());
+    let t_fr = rotation(&a, "fr.frame_b");
+    let r_fr = vector(&a, "fr.frame_b.r_0");
+    let mut swing = 0.0f64;
+    for (k, &t) in a.t().iter().enumerate() {
+        swing = swing.max((phi_a[k] - phi_a[0]).abs());
+        // Two integrations at rtol 1e-10 of the same pendulum; a joint axis or body
+        // turned the wrong way (R' for R) swings differently by tenths of a radian.
+        assert!(
+            (phi_a[k] - phi_b[k]).abs() < 1e-7,
+            "rev.phi at {t}: {} under the FixedRotation, {} folded",
+            phi_a[k],
+            phi_b[k]
+        );
+        assert_mat("fr.frame_b.R.T", t, &t_fr[k], &tr(&rr), 1e-12);
+        assert_vec("fr.frame_b.r_0", t, r_fr[k], r, 1e-12);
+    }
+    assert!(swing > 1.0, "the pendulum swung only {swing} rad");
+}
+
+/// The rotation about z by 30 degrees on the world frame. Fails to compile:
+/// "structurally singular ... determined more than once: fr.frame_b.R.T[2,3]", by the
+/// FixedRotation's orientation equations
+/// `fr.frame_b.R.T[2,3] = -0.5 fr.frame_a.R.T[1,3] + 0.866 fr.frame_a.R.T[2,3]` and
+/// `fr.frame_b.R.w[1] = 0.866 fr.frame_a.R.w[1] + 0.5 fr.frame_a.R.w[2]`, each of which
+/// reduces to `0 = fr.frame_b...` on the constant world frame. The same happens for any rotation
+/// about a coordinate axis by a nonzero angle (whose matrix has zero entries) on the
+/// world or on a `Fixed` frame, with or without a joint after it; it compiles behind a
+/// joint, or for a skew axis (the next test).
+#[test]
+#[ignore = "BUG: FixedRotation on the world frame is structurally singular"]
+fn pendulum_under_a_fixed_rotation_about_z_on_the_world() {
+    pendulum_under_a_fixed_rotation_on_the_world(EZ, 30.0);
+}
+
+/// The rotation about (1, 1, 1) by 30 degrees on the world frame (no zero entry in its
+/// matrix).
+#[test]
+fn pendulum_under_a_fixed_rotation_about_a_skew_axis_on_the_world() {
+    pendulum_under_a_fixed_rotation_on_the_world([1.0, 1.0, 1.0], 30.0);
 }
