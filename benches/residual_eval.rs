@@ -13,7 +13,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use multibody::prelude::*;
-use multibody::solve::ida::DaeFunctions;
+use multibody_core::solve::ida::DaeFunctions;
 
 use rotational_chain::{Baseline, chain};
 

@@ -61,8 +61,12 @@ fn run(name: &str, build: fn() -> System) -> Result<(f64, f64), multibody::Error
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let (cut_compile, cut_solve) = run("fourbar_cutjoint", fourbar_cutjoint::fourbar_cutjoint)?;
-    let (us_compile, us_solve) = run("fourbar_analytic", fourbar_analytic::fourbar_analytic)?;
+    let (cut_compile, cut_solve) = run("fourbar_cutjoint", || {
+        fourbar_cutjoint::fourbar_cutjoint().into()
+    })?;
+    let (us_compile, us_solve) = run("fourbar_analytic", || {
+        fourbar_analytic::fourbar_analytic().into()
+    })?;
     println!(
         "{{\"solve_ratio\": {:.3}, \"compile_ratio\": {:.3}}}",
         cut_solve / us_solve,

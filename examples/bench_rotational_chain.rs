@@ -31,10 +31,12 @@
 use std::time::Instant;
 
 use multibody::LinearSolverChoice;
+use multibody::PhaseTimes;
 use multibody::prelude::*;
 use multibody::rotational::{Fixed, Inertia, SpringDamper};
-use multibody::simplify::PhaseTimes;
-use multibody::solve::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
+use multibody_core::solve::ida::{
+    self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode,
+};
 
 /// Rounds of compilation (and initialization) of every size; the fastest counts.
 const COMPILE_ROUNDS: usize = 8;
@@ -456,7 +458,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         let sol = sol.expect("at least one solve");
-        let ours_last = sol.final_value(&format!("inertia{n}.phi"))?;
+        let ours_last = sol.final_value(format!("inertia{n}.phi"))?;
         if std::env::var("BENCH_STATS").is_ok() {
             eprintln!("ours {:?}", sol.statistics());
         }

@@ -9,9 +9,9 @@ use multibody::electrical::{EMF, Ground, Inductor, Resistor, SignalVoltage};
 use multibody::prelude::*;
 use multibody::rotational::{Fixed, IdealGear, Inertia, SpeedSensor};
 
-/// The model: reference load speed 1 rad/s from t = 0.5 s.
-pub fn dc_motor() -> System {
-    system! {
+system! {
+    /// The model: reference load speed 1 rad/s from t = 0.5 s.
+    pub fn dc_motor() -> DcMotor {
         name: "dc_motor";
         resistor = Resistor { R: 10.0 };
         inductor = Inductor { L: 0.05 };

@@ -10,9 +10,9 @@ use multibody::prelude::*;
 use multibody::rotational::Damper;
 use multibody::world::World;
 
-/// The model (MSL: boxes of 0.5 m x 0.06 m, damper d = 0.1 on the first joint).
-pub fn double_pendulum() -> System {
-    system! {
+system! {
+    /// The model (MSL: boxes of 0.5 m x 0.06 m, damper d = 0.1 on the first joint).
+    pub fn double_pendulum() -> DoublePendulum {
         name: "double_pendulum";
         world = World::default();
         revolute1 = Revolute { n: [0.0, 0.0, 1.0], axisflange: true };

@@ -16,9 +16,9 @@ use multibody::world::World;
 /// Length of each bar \[m\].
 const L: f64 = 1.5;
 
-/// The model of the seed tutorial (`j4` closes the loop).
-pub fn fourbar() -> System {
-    system! {
+system! {
+    /// The model of the seed tutorial (`j4` closes the loop).
+    pub fn fourbar() -> Fourbar {
         name: "fourbar";
         world = World::default();
         j1 = Revolute { axisflange: true };

@@ -11,9 +11,9 @@ use multibody::parts::{BodyShape, FixedTranslation};
 use multibody::prelude::*;
 use multibody::world::World;
 
-/// The model of the seed tutorial (`fourbar_analytic` there).
-pub fn fourbar_analytic() -> System {
-    system! {
+system! {
+    /// The model of the seed tutorial (`fourbar_analytic` there).
+    pub fn fourbar_analytic() -> FourbarAnalytic {
         name: "fourbar_analytic";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755983, state_priority: 12.0, radius: 0.1 };

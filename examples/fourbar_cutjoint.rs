@@ -12,27 +12,26 @@ use multibody::prelude::*;
 use multibody::world::World;
 
 /// The model of the seed tutorial (`fourbar2` there).
-pub fn fourbar_cutjoint() -> System {
+pub fn fourbar_cutjoint() -> Model<Fourbar2> {
     fourbar_with_cut(Some("j5"))
 }
 
-/// The same mechanism with the joint named `cut` (`j2`, `j3`, `j4`, `j5`, `rev`, `rev1`)
-/// as its cut joint, or with none (the loop is then broken at a connection).
-pub fn fourbar_with_cut(cut: Option<&str>) -> System {
-    let is = |name: &str| cut == Some(name);
-    system! {
+system! {
+    /// The same mechanism with the joint named `cut` (`j2`, `j3`, `j4`, `j5`, `rev`,
+    /// `rev1`) as its cut joint, or with none (the loop is then broken at a connection).
+    pub fn fourbar_with_cut(cut: Option<&str>) -> Fourbar2 {
         name: "fourbar2";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755982989, state_priority: 10.0, radius: 0.1 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2, iscut: is("j2") };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2, iscut: cut == Some("j2") };
         b1 = BodyShape { r: [0.0, 0.5, 0.1], radius: 0.03 };
         b2 = BodyShape { r: [0.0, 0.2, 0.0], radius: 0.03 };
         b3 = BodyShape { r: [-1.0, 0.3, 0.1], radius: 0.03 };
-        rev = Revolute { n: [0.0, 1.0, 0.0], iscut: is("rev") };
-        rev1 = Revolute { iscut: is("rev1") };
-        j3 = Revolute { n: [1.0, 0.0, 0.0], iscut: is("j3") };
-        j4 = Revolute { n: [0.0, 1.0, 0.0], iscut: is("j4") };
-        j5 = Revolute { n: [0.0, 0.0, 1.0], iscut: is("j5") };
+        rev = Revolute { n: [0.0, 1.0, 0.0], iscut: cut == Some("rev") };
+        rev1 = Revolute { iscut: cut == Some("rev1") };
+        j3 = Revolute { n: [1.0, 0.0, 0.0], iscut: cut == Some("j3") };
+        j4 = Revolute { n: [0.0, 1.0, 0.0], iscut: cut == Some("j4") };
+        j5 = Revolute { n: [0.0, 0.0, 1.0], iscut: cut == Some("j5") };
         b0 = FixedTranslation { r: [1.2, 0.0, 0.0], radius: 0.0 };
         connect(j2.frame_b, b2.frame_a);
         connect(j1.frame_b, b1.frame_a);

@@ -8,9 +8,9 @@ use multibody::parts::{Body, OrientationStates};
 use multibody::prelude::*;
 use multibody::world::World;
 
-/// A body spinning about its intermediate principal axis (the unstable one).
-pub fn free_body(states: OrientationStates) -> System {
-    system! {
+system! {
+    /// A body spinning about its intermediate principal axis (the unstable one).
+    pub fn free_body(states: OrientationStates) -> FreeBody {
         name: "free_body";
         world = World { g: 0.0 };
         body = Body { m: 1.0, I_11: 0.1, I_22: 0.2, I_33: 0.3, orientation_states: states };

@@ -9,9 +9,9 @@ use multibody::prelude::*;
 use multibody::rotational::Damper;
 use multibody::world::World;
 
-/// The model (MSL defaults: n = z, d = 0.1, m = 1, r_CM = {0.5, 0, 0}).
-pub fn pendulum() -> System {
-    system! {
+system! {
+    /// The model (MSL defaults: n = z, d = 0.1, m = 1, r_CM = {0.5, 0, 0}).
+    pub fn pendulum() -> Pendulum {
         name: "pendulum";
         world = World::default();
         rev = Revolute { n: [0.0, 0.0, 1.0], axisflange: true };

@@ -8,9 +8,9 @@ use multibody::parts::BodyShape;
 use multibody::prelude::*;
 use multibody::world::World;
 
-/// The model: a 1 m, 1 kg link on a ball joint with angle states.
-pub fn spherical_pendulum() -> System {
-    system! {
+system! {
+    /// The model: a 1 m, 1 kg link on a ball joint with angle states.
+    pub fn spherical_pendulum() -> SphericalPendulum {
         name: "spherical_pendulum";
         world = World::default();
         joint = Spherical { state: true };

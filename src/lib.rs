@@ -59,21 +59,41 @@ pub mod translational;
 pub mod world;
 
 pub use mechanism::{structural_simplify, structural_simplify_with};
-pub use multibody_core::codegen;
-pub use multibody_core::expr::{Expr, ExprStore};
+pub use multibody_core::Error;
+pub use multibody_core::expr::Expr;
 pub use multibody_core::model::{
-    Component, Connector, ConnectorHandle, Parameter, PathId, Real, Signal, StateSelect, System,
-    TypedComponent, VarKind, Variable,
+    Component, Connector, ConnectorHandle, Model, Named, Parameter, PathId, Real, Signal,
+    StateSelect, System, TypedComponent, VarKind, Variable,
 };
-pub use multibody_core::plot::{PlotOptions, plot, plot_figure};
 pub use multibody_core::simplify::{
-    LinearBlockLimits, PlanarLoops, SimplifiedSystem, SimplifyOptions, Statistics,
+    DynamicStates, PhaseTimes, PlanarLoops, SimplifiedSystem, SimplifyOptions, StateCandidates,
+    Statistics,
 };
 pub use multibody_core::solve::{
-    DaeProblem, IdaStats, InitReport, LinearSolverChoice, Solution, SolverOptions,
+    DaeProblem, IdaStats, InitReport, LinearSolverChoice, ProblemBuilder, Segment, Solution,
+    SolverOptions,
 };
-pub use multibody_core::{Error, model, simplify, solve, structure};
 pub use multibody_macros::{component, connector, system};
+pub use plot::{Figure, PlotOptions, plot, plot_figure};
+
+/// Plots of solutions: variables against time by name or handle, with their units, in
+/// panels, several solutions overlaid ([`Figure`]); and the panels underneath
+/// ([`plot_panels`](plot::plot_panels)) for curves of any data.
+pub mod plot {
+    pub use multibody_core::plot::{
+        Figure, Panel, PlotError, PlotOptions, Series, plot, plot_figure, plot_panels,
+    };
+}
+
+/// The errors of each stage, which [`Error`] wraps: match on them to tell what failed.
+pub mod error {
+    pub use multibody_core::Error;
+    pub use multibody_core::codegen::CodegenError;
+    pub use multibody_core::model::ModelError;
+    pub use multibody_core::plot::PlotError;
+    pub use multibody_core::simplify::SimplifyError;
+    pub use multibody_core::solve::{InitError, SolutionError, SolveError};
+}
 
 /// What a model file needs: the macros, the builder types, the solver and plots, and
 /// the functions used in equations.
@@ -82,9 +102,9 @@ pub mod prelude {
     pub use crate::functions::*;
     pub use crate::render::{RenderOptions, render};
     pub use crate::{
-        Component, ConnectorHandle, DaeProblem, Expr, PlotOptions, Real, Signal, SimplifiedSystem,
-        Solution, SolverOptions, StateSelect, System, TypedComponent, Variable, component,
-        connector, plot, plot_figure, structural_simplify, system,
+        Component, ConnectorHandle, DaeProblem, Expr, Figure, Model, Named, PlotOptions, Real,
+        Signal, SimplifiedSystem, Solution, SolverOptions, StateSelect, System, TypedComponent,
+        Variable, component, connector, plot, plot_figure, structural_simplify, system,
     };
 }
 
@@ -93,9 +113,9 @@ pub mod prelude {
 pub mod __private {
     pub use multibody_core::expr::Expr;
     pub use multibody_core::model::{
-        Component, Connector, ConnectorHandle, Parameter, ParameterType, PathId, Signal, Signal3,
-        StateSelect, StructuralValue, System, TypedComponent, VarKind, Variable, VariableType,
-        declare_signal, declare_signal3, member, signal_at, signal3_at,
+        Component, Connector, ConnectorHandle, Model, Parameter, ParameterType, PathId, Signal,
+        Signal3, StateSelect, StructuralValue, System, TypedComponent, VarKind, Variable,
+        VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,
     };
 
     /// The functions equations use (`der`, `sin`, ...).

@@ -211,7 +211,8 @@ fn is_planar(links: &[&Link]) -> bool {
 
 /// The planar loops of a model: for each, the paths of its revolute and prismatic
 /// joints in loop order.
-pub fn planar_loops(model: &System) -> Vec<Vec<String>> {
+pub fn planar_loops(model: &(impl AsRef<System> + ?Sized)) -> Vec<Vec<String>> {
+    let model = model.as_ref();
     // A planar loop has two revolute joints at least: a model with fewer (any model of
     // 1-D components) needs no graph of its connections.
     if count_revolute_joints(model, 2) < 2 {

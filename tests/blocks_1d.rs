@@ -21,7 +21,7 @@ use multibody::rotational::{
 };
 use multibody::translational::{Force, Mass, PositionSensor};
 
-fn solve(model: &System, t1: f64) -> Solution {
+fn solve(model: &(impl AsRef<System> + ?Sized), t1: f64) -> Solution {
     let ssys = structural_simplify(model).unwrap();
     DaeProblem::new(&ssys, &[], (0.0, t1))
         .unwrap()

@@ -24,7 +24,7 @@ fn matrix(sol: &Solution, frame: &str) -> Vec<Vec<Vec<f64>>> {
     (1..=3)
         .map(|i| {
             (1..=3)
-                .map(|j| sol.get(&format!("{frame}.R.T[{i},{j}]")).unwrap())
+                .map(|j| sol.get(format!("{frame}.R.T[{i},{j}]")).unwrap())
                 .collect()
         })
         .collect()
@@ -77,7 +77,7 @@ fn spherical_pendulum_in_steady_conical_motion() {
         .solve(&options)
         .unwrap();
     let phi: Vec<Vec<f64>> = (1..=3)
-        .map(|i| sol.get(&format!("joint.phi[{i}]")).unwrap())
+        .map(|i| sol.get(format!("joint.phi[{i}]")).unwrap())
         .collect();
     let t_b = matrix(&sol, "body.frame_a");
     // rtol 1e-10 over four periods of a stable motion: errors of order 1e-9. 1e-6
@@ -111,7 +111,7 @@ fn spherical_pendulum_in_steady_conical_motion() {
         // The body turns about the world's vertical at Omega: w resolved in the body
         // frame is T (0, Omega, 0).
         for i in 0..3 {
-            let w = sol.get(&format!("body.w_a[{}]", i + 1)).unwrap()[k];
+            let w = sol.get(format!("body.w_a[{}]", i + 1)).unwrap()[k];
             assert!(
                 (w - omega * t_b[i][1][k]).abs() < tol,
                 "w_a[{}] = {w} at {t}",

@@ -8,11 +8,11 @@
 mod mechanics;
 
 use mechanics::{MassProps, body_energy, relative_drift};
+use multibody::DynamicStates;
 use multibody::joints::{Revolute, RevolutePlanarLoopConstraint};
 use multibody::parts::{BodyShape, FixedTranslation};
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Inertia};
-use multibody::simplify::DynamicStates;
 use multibody::world::World;
 use multibody::{SimplifyOptions, structural_simplify_with};
 
@@ -57,10 +57,10 @@ fn bars_energy(sol: &Solution, bars: &[(&str, [f64; 3])], g: f64) -> Vec<f64> {
 const L: f64 = 1.5;
 const G_N: f64 = 9.80665;
 
-/// The tutorial's four-bar (a rhombus of bars of length 1.5, free to turn about the
-/// world) with both dampers at 0.
-fn rhombus() -> System {
-    system! {
+system! {
+    /// The tutorial's four-bar (a rhombus of bars of length 1.5, free to turn about the
+    /// world) with both dampers at 0.
+    fn rhombus() -> Rhombus {
         name: "fourbar";
         world = World::default();
         j1 = Revolute { axisflange: true };
@@ -154,10 +154,10 @@ fn without_dynamic_states_the_four_bar_stops_at_its_first_fold() {
 // ---------------------------------------------------------------------------------------
 // A family of four-bars whose every link swings between dead centres.
 
-/// A four-bar with ground link `d` (from `world` to the rocker's pivot), crank `a`,
-/// coupler `b` and rocker `c`, in no gravity.
-fn non_grashof(a: f64, b: f64, c: f64, d: f64) -> System {
-    system! {
+system! {
+    /// A four-bar with ground link `d` (from `world` to the rocker's pivot), crank `a`,
+    /// coupler `b` and rocker `c`, in no gravity.
+    fn non_grashof(a: f64, b: f64, c: f64, d: f64) -> NonGrashof {
         name: "nongrashof";
         world = World { g: 0.0 };
         ground = FixedTranslation { r: [d, 0.0, 0.0] };

@@ -4,9 +4,9 @@
 
 use std::sync::Mutex;
 
-use multibody::ExprStore;
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Fixed, Inertia, Spring};
+use multibody_core::expr::ExprStore;
 
 /// The tests run one at a time (the count of stores is the process's), each on a
 /// thread of its own that has ended, with its thread-local state, when it returns.
@@ -17,8 +17,8 @@ fn isolated<R: Send + 'static>(f: impl FnOnce() -> R + Send + 'static) -> R {
     std::thread::spawn(f).join().expect("the test's thread")
 }
 
-fn oscillator(c: f64) -> System {
-    system! {
+system! {
+    fn oscillator(c: f64) -> Oscillator {
         name: "oscillator";
         fixed = Fixed::default();
         spring = Spring { c };
@@ -32,7 +32,7 @@ fn oscillator(c: f64) -> System {
 }
 
 /// The angle of the oscillator at t = 2 s.
-fn phi_at_2(model: &System) -> f64 {
+fn phi_at_2(model: &(impl AsRef<System> + ?Sized)) -> f64 {
     let ssys = structural_simplify(model).expect("compiles");
     let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
         .expect("initializes")
@@ -82,7 +82,7 @@ fn copied_from_another_model() {
     let donor = oscillator(4.0);
     // Built while `donor` is this thread's current model: it lives in donor's store.
     let torque = Expr::param("inertia.J") * -0.5 * Expr::time().sin();
-    let mut model = oscillator(4.0);
+    let mut model = oscillator(4.0).into_system();
     let y = model.var("y");
     model.equation(y.der(), torque);
     model.initial_equation(y, 0.0);

@@ -51,7 +51,7 @@ fn sizes(v: &[(usize, usize)], after: bool) -> String {
     format!("{{{}}}", s.join(", "))
 }
 
-fn assert_golden(model: &System, g: &Golden) -> SimplifiedSystem {
+fn assert_golden(model: &impl AsRef<System>, g: &Golden) -> SimplifiedSystem {
     let ssys = structural_simplify(model).unwrap();
     let st: &Statistics = ssys.statistics();
     let name = ssys.name().to_string();

@@ -41,7 +41,7 @@ fn norm(a: [f64; 3]) -> f64 {
 /// The three components of a vector variable at every reported time.
 fn vector(sol: &Solution, name: &str) -> Vec<[f64; 3]> {
     let c: Vec<Vec<f64>> = (1..=3)
-        .map(|i| sol.get(&format!("{name}[{i}]")).unwrap())
+        .map(|i| sol.get(format!("{name}[{i}]")).unwrap())
         .collect();
     (0..sol.t().len())
         .map(|k| [c[0][k], c[1][k], c[2][k]])
@@ -52,7 +52,7 @@ fn vector(sol: &Solution, name: &str) -> Vec<[f64; 3]> {
 fn rotation(sol: &Solution, frame: &str) -> Vec<[[f64; 3]; 3]> {
     let c: Vec<Vec<f64>> = (1..=3)
         .flat_map(|i| (1..=3).map(move |j| (i, j)))
-        .map(|(i, j)| sol.get(&format!("{frame}.R.T[{i},{j}]")).unwrap())
+        .map(|(i, j)| sol.get(format!("{frame}.R.T[{i},{j}]")).unwrap())
         .collect();
     (0..sol.t().len())
         .map(|k| std::array::from_fn(|i| std::array::from_fn(|j| c[3 * i + j][k])))
@@ -164,6 +164,7 @@ fn planar_loops_analytic() -> System {
         connect(sine.y, position.phi_ref);
         connect(position.flange, rev.axis);
     }
+    .into()
 }
 
 /// The same mechanism from plain revolute joints: in loop k, `ra{k}` turns rod 1 (with
@@ -232,6 +233,7 @@ fn planar_loops_with_revolutes() -> System {
         connect(sine.y, position.phi_ref);
         connect(position.flange, rev.axis);
     }
+    .into()
 }
 
 /// MSL's initial conditions: `rev.w` fixed at 0 (the filter's `phi = phi_ref` is the
@@ -393,11 +395,11 @@ fn planar_loops_analytic_equals_the_plain_revolute_mechanism() {
 // SphericalSpherical
 // ---------------------------------------------------------------------------------
 
-/// MSL `Fourbar2`'s geometry with the loop closed by a `SphericalSpherical` rod carrying
-/// a point mass: `j1` turns the crank `b1`, the slider `j2` carries `b2`, the rod joins
-/// their ends. Its length is computed at initialization with `j2.s` fixed at -0.2.
-fn fourbar_spherical_spherical(rod_mass: f64) -> System {
-    system! {
+system! {
+    /// MSL `Fourbar2`'s geometry with the loop closed by a `SphericalSpherical` rod carrying
+    /// a point mass: `j1` turns the crank `b1`, the slider `j2` carries `b2`, the rod joins
+    /// their ends. Its length is computed at initialization with `j2.s` fixed at -0.2.
+    fn fourbar_spherical_spherical(rod_mass: f64) -> FourbarSphericalSpherical {
         name: "FourbarSphericalSpherical";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0], state_priority: 1000.0 };
@@ -466,10 +468,10 @@ fn spherical_spherical_rod_keeps_its_length_and_the_energy() {
 // JointSSP
 // ---------------------------------------------------------------------------------
 
-/// A spatial crank-slider: the crank `b1` (about x) moves a slider along x through a
-/// `JointSSP` whose rod 1 carries a point mass of `rod_mass`; a body rides on the slider.
-fn crank_slider_ssp(rod_mass: f64) -> System {
-    system! {
+system! {
+    /// A spatial crank-slider: the crank `b1` (about x) moves a slider along x through a
+    /// `JointSSP` whose rod 1 carries a point mass of `rod_mass`; a body rides on the slider.
+    fn crank_slider_ssp(rod_mass: f64) -> CrankSliderSsp {
         name: "CrankSliderSSP";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0] };
@@ -549,11 +551,11 @@ fn joint_ssp_crank_slider_keeps_its_rod_and_the_energy() {
 const USR_ROD1: [f64; 3] = [1.2, 0.5, -0.4];
 const USR_ROD2: [f64; 3] = [0.0, 0.7, 0.0];
 
-/// A spatial crank-crank mechanism: the crank `b1` (about x, at the origin) drives,
-/// through a `JointUSR`, a second crank (rod 2) about x at (1.2, 0.2, 0.1); both turn
-/// all the way round, so the revolute angle passes +-pi. Bodies sit on both rods.
-fn crank_crank_usr() -> System {
-    system! {
+system! {
+    /// A spatial crank-crank mechanism: the crank `b1` (about x, at the origin) drives,
+    /// through a `JointUSR`, a second crank (rod 2) about x at (1.2, 0.2, 0.1); both turn
+    /// all the way round, so the revolute angle passes +-pi. Bodies sit on both rods.
+    fn crank_crank_usr() -> CrankCrankUsr {
         name: "CrankCrankUSR";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0] };

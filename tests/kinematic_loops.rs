@@ -281,7 +281,7 @@ fn cut_joint_fourbar_has_j1_as_its_only_states() {
         (1..=3)
             .map(|i| {
                 (1..=3)
-                    .map(|j| sol.get(&format!("j5.{frame}.R.T[{i},{j}]")).unwrap())
+                    .map(|j| sol.get(format!("j5.{frame}.R.T[{i},{j}]")).unwrap())
                     .collect()
             })
             .collect()
@@ -412,7 +412,7 @@ fn the_spatial_loop_cut_anywhere_moves_the_same() {
 
 /// The planar four-bar with `j4` a plain revolute joint: five parallel revolute joints.
 fn planar_fourbar_without_loop_constraint() -> System {
-    let mut model = fourbar_example::fourbar();
+    let mut model = fourbar_example::fourbar().into_system();
     assert!(model.replace("j4", &multibody::joints::Revolute::default()));
     model
 }
@@ -617,12 +617,12 @@ fn a_loop_that_cannot_close_names_its_joints_and_asks_for_guesses() {
 fn initialization_iterates_on_joint_coordinates_only() {
     for (model, overrides, expected) in [
         (
-            fourbar_example::fourbar(),
+            fourbar_example::fourbar().into_system(),
             vec![("j1.phi", 0.1)],
             vec!["j3.phi", "j5.phi"],
         ),
         (
-            fourbar_cutjoint_example::fourbar_cutjoint(),
+            fourbar_cutjoint_example::fourbar_cutjoint().into_system(),
             vec![],
             vec!["rev1.phi", "rev.phi", "j3.phi", "j4.phi", "j5.phi"],
         ),

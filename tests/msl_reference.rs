@@ -189,6 +189,7 @@ fn fourbar1(cut_j5: bool) -> System {
         connect(b0.frame_a, world.frame_b);
         connect(b0.frame_b, j2.frame_a);
     }
+    .into()
 }
 
 fn check_fourbar1(cut_j5: bool) {

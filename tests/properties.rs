@@ -58,11 +58,12 @@ fn physical(v: f64) -> bool {
 /// Checks what a model gave: an error naming the model or one of `parts`, or finite
 /// values of `read`. Returns the solution when it exists.
 fn outcome(
-    model: &System,
+    model: &(impl AsRef<System> + ?Sized),
     parts: &[String],
     read: &[String],
     options: &SolverOptions,
 ) -> Result<Option<Solution>, TestCaseError> {
+    let model = model.as_ref();
     let result = structural_simplify(model)
         .and_then(|ssys| DaeProblem::new(&ssys, &[], (0.0, 2.0))?.solve(options));
     let named =
@@ -187,13 +188,13 @@ fn build_network(net: &Network) -> System {
 fn network_energy(net: &Network, sol: &Solution) -> Vec<f64> {
     let mut total = vec![0.0; sol.t().len()];
     for (k, &(j, _)) in net.inertias.iter().enumerate() {
-        let w = sol.get(&format!("i{k}.w")).expect("w");
+        let w = sol.get(format!("i{k}.w")).expect("w");
         for (e, w) in total.iter_mut().zip(w) {
             *e += 0.5 * j * w * w;
         }
     }
     for (k, el) in net.elements.iter().enumerate() {
-        let phi = sol.get(&format!("e{k}.phi_rel")).expect("phi_rel");
+        let phi = sol.get(format!("e{k}.phi_rel")).expect("phi_rel");
         for (e, p) in total.iter_mut().zip(phi) {
             *e += 0.5 * el.k * p * p;
         }

@@ -31,7 +31,7 @@ fn fourbar() -> (System, Solution) {
         .unwrap()
         .solve(&SolverOptions::default().with_output_interval(0.0, 2.0, 0.01))
         .unwrap();
-    (model, sol)
+    (model.into_system(), sol)
 }
 
 /// Plain options for tests: no grid, axes or label unless a test wants them.
@@ -149,7 +149,7 @@ fn project(p: [f64; 3], d: f64, fov_deg: f64, (w, h): (u32, u32)) -> (u32, u32) 
 }
 
 fn position(sol: &Solution, frame: &str, t: f64) -> [f64; 3] {
-    std::array::from_fn(|i| sol.at(&format!("{frame}.r_0[{}]", i + 1), t).unwrap())
+    std::array::from_fn(|i| sol.at(format!("{frame}.r_0[{}]", i + 1), t).unwrap())
 }
 
 /// Distance from `p` to the segment from `a` to `b` (in the x-y plane).

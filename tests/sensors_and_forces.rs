@@ -146,7 +146,12 @@ fn tight_on(t_end: f64, n: usize) -> SolverOptions {
 
 /// Compiles and solves `model` from `values` over `[0, t_end]`, reporting at `n + 1`
 /// equally spaced times (a failure panics with the library's message).
-fn simulate(model: &System, values: &[(&str, f64)], t_end: f64, n: usize) -> Solution {
+fn simulate(
+    model: &(impl AsRef<System> + ?Sized),
+    values: &[(&str, f64)],
+    t_end: f64,
+    n: usize,
+) -> Solution {
     let ssys = structural_simplify(model).unwrap_or_else(|e| panic!("{e}"));
     DaeProblem::new(&ssys, values, (0.0, t_end))
         .and_then(|p| p.solve(&tight_on(t_end, n)))
@@ -852,7 +857,8 @@ fn body_on_line_force(element: &dyn Component, anchor: V3, m: f64) -> System {
         fixed = Fixed { r: anchor };
         body = Body { m, I_11: 0.01, I_22: 0.01, I_33: 0.01,
                       orientation_states: OrientationStates::Quaternion };
-    };
+    }
+    .into_system();
     model.add("line", element);
     model.connect("fixed.frame_b", "line.frame_a");
     model.connect("line.frame_b", "body.frame_a");
@@ -1190,7 +1196,8 @@ fn pendulum_through(link: Option<&FixedRotation>, reversed: bool, p: V3) -> Syst
         rev = Revolute { n: EZ };
         body = Body { r_CM: p, I_11: FR_I, I_22: FR_I, I_33: FR_I };
         connect(world.frame_b, rev.frame_a);
-    };
+    }
+    .into_system();
     match link {
         None => model.connect("rev.frame_b", "body.frame_a"),
         Some(fr) => {

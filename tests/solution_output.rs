@@ -16,8 +16,8 @@ fn assumed_by_name(prob: &DaeProblem<'_>) -> Vec<(String, f64)> {
     assumed
 }
 
-fn mass_spring(c: f64, d: f64, m: f64, s0: f64, v0: f64) -> System {
-    system! {
+system! {
+    fn mass_spring(c: f64, d: f64, m: f64, s0: f64, v0: f64) -> MassSpring {
         name: "mass_spring";
         fixed = Fixed::default();
         spring = Spring { c };
@@ -117,7 +117,7 @@ fn csv_export_without_names_writes_every_variable() {
         .solve(&tight().with_output_interval(0.0, 0.5, 0.25))
         .unwrap();
     let file = TempFile::new("all");
-    sol.write_csv(&file.0, &[]).unwrap();
+    sol.write_csv_all(&file.0).unwrap();
     let (header, rows) = read_csv(&file.0);
     assert_eq!(header[0], "time");
     let names: Vec<&str> = sol.names().iter().map(|n| &**n).collect();

@@ -38,9 +38,9 @@ use rne::{Link, Rne};
 use multibody::joints::Revolute;
 use multibody::parts::BodyShape;
 use multibody::prelude::*;
-use multibody::solve::ida::{self, IdaSettings, LinearSolver, OutputMode};
 use multibody::world::World;
 use multibody::{LinearSolverChoice, SimplifyOptions, structural_simplify_with};
+use multibody_core::solve::ida::{self, IdaSettings, LinearSolver, OutputMode};
 
 const T_END: f64 = 10.0;
 const RTOL: f64 = 1e-6;
@@ -199,7 +199,7 @@ fn main() -> Result<(), multibody::Error> {
             args
         }
     };
-    let mut linear_blocks = multibody::LinearBlockLimits::default();
+    let mut linear_blocks = multibody_core::simplify::LinearBlockLimits::default();
     if let Some(k) = std::env::var("BENCH_MAX_TEARING")
         .ok()
         .and_then(|v| v.parse().ok())
@@ -332,7 +332,7 @@ fn main() -> Result<(), multibody::Error> {
 /// One compiled and solved variant of the chain.
 struct Run {
     ssys: SimplifiedSystem,
-    times: multibody::simplify::PhaseTimes,
+    times: multibody::PhaseTimes,
     compile_s: f64,
     init_s: f64,
     solve_s: f64,
@@ -350,7 +350,7 @@ const COMPILE_ROUNDS: usize = 5;
 /// its initialization (the fastest over rounds once merged).
 struct Compiled {
     ssys: SimplifiedSystem,
-    times: multibody::simplify::PhaseTimes,
+    times: multibody::PhaseTimes,
     init_s: f64,
 }
 
@@ -360,7 +360,7 @@ impl Compiled {
         let (b, t) = (self.times, other.times);
         Compiled {
             ssys: self.ssys,
-            times: multibody::simplify::PhaseTimes {
+            times: multibody::PhaseTimes {
                 flatten_s: b.flatten_s.min(t.flatten_s),
                 simplify_s: b.simplify_s.min(t.simplify_s),
                 codegen_s: b.codegen_s.min(t.codegen_s),
@@ -486,7 +486,7 @@ fn diagnostics(ssys: &multibody::SimplifiedSystem) {
         );
     }
     for k in [0, 2, 8] {
-        let e = multibody::codegen::ExtendedJacobian::new(
+        let e = multibody_core::codegen::ExtendedJacobian::new(
             &c.residual,
             c.layout.n,
             c.layout.u(0),

@@ -3,7 +3,7 @@
 //! recursive Newton-Euler equations in 3-D (link frames, rotation matrices, cross
 //! products), written the way one would in C for a serial chain of revolute joints.
 
-use multibody::solve::ida::{DaeFunctions, EvalError};
+use multibody_core::solve::ida::{DaeFunctions, EvalError};
 
 type V3 = [f64; 3];
 type M3 = [[f64; 3]; 3];

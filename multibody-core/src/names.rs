@@ -93,31 +93,80 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
     prev[b.len()]
 }
 
-/// Up to `n` candidates closest to `name`, nearest first (ties in the candidates' order);
-/// candidates that share `name`'s last path component come first.
+/// Up to `n` candidates closest to `name`, nearest first (ties in the candidates' order).
+///
+/// Paths are compared as paths: a candidate that keeps `name`'s first and last component
+/// and adds components between them (`b1.body.m` for `b1.m`) comes first, fewer added
+/// first; then candidates of the same first component (the same instance) close in the
+/// rest; then the others: those ending in `name`'s last component by how far their
+/// instances are, the rest by edit distance.
 pub fn closest<'a>(
     name: &str,
     candidates: impl IntoIterator<Item = &'a str>,
     n: usize,
 ) -> Vec<String> {
-    let last = name.rsplit('.').next().unwrap_or(name);
-    let mut scored: Vec<(usize, usize, &str)> = candidates
+    let mut scored: Vec<((usize, usize), usize, &str)> = candidates
         .into_iter()
         .enumerate()
-        .map(|(i, c)| {
-            let mut d = edit_distance(name, c);
-            if c.rsplit('.').next() == Some(last) {
-                d = d.saturating_sub(2);
-            }
-            (d, i, c)
-        })
+        .map(|(i, c)| (path_distance(name, c), i, c))
         .collect();
     scored.sort();
-    scored
-        .into_iter()
-        .take(n)
-        .map(|(_, _, c)| c.to_string())
-        .collect()
+    let mut out: Vec<String> = Vec::with_capacity(n);
+    for (_, _, c) in scored {
+        if out.len() == n {
+            break;
+        }
+        if !out.iter().any(|o| o == c) {
+            out.push(c.to_string());
+        }
+    }
+    out
+}
+
+/// How far candidate `c` is from `name`: (tier, distance within the tier), see
+/// [`closest`].
+fn path_distance(name: &str, c: &str) -> (usize, usize) {
+    let (first, last) = (first_component(name), last_component(name));
+    let (c_first, c_last) = (first_component(c), last_component(c));
+    let name_parts = name.split('.').count();
+    let c_parts = c.split('.').count();
+    if name_parts >= 2 && first == c_first && last == c_last && c_parts > name_parts {
+        return (0, c_parts - name_parts);
+    }
+    if name_parts >= 2 && first == c_first {
+        let rest = &name[first.len()..];
+        let d = edit_distance(rest, &c[c_first.len()..]);
+        if 2 * d <= rest.chars().count().max(4) {
+            return (1, d);
+        }
+    }
+    if c_last == last && name_parts >= 2 {
+        // The same quantity of another instance: how far the instances are apart.
+        let d = edit_distance(first, c_first) + c_parts.abs_diff(name_parts);
+        return (2, d.saturating_sub(1));
+    }
+    (2, edit_distance(name, c))
+}
+
+/// `a` of `a.b.c` (up to an index: `a` of `a[2].b`).
+fn first_component(path: &str) -> &str {
+    path.split(['.', '[']).next().unwrap_or(path)
+}
+
+/// `c` of `a.b.c`.
+fn last_component(path: &str) -> &str {
+    path.rsplit('.').next().unwrap_or(path)
+}
+
+/// `text`, or, when it is longer than `max` characters, its beginning and the number of
+/// characters left out (`a = b + ... (1 400 more characters)`).
+pub fn elide(text: &str, max: usize) -> String {
+    let n = text.chars().count();
+    if n <= max {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(max).collect();
+    format!("{head} ... ({} more characters)", n - max)
 }
 
 /// Formats a list of names as `a, b, c` (at most `max` of them, then `... (N more)`).
@@ -144,6 +193,20 @@ mod tests {
         let c = ["j1.phi", "j1.w", "j2.s", "j2.v"];
         assert_eq!(closest("j1.ph", c, 2), vec!["j1.phi", "j1.w"]);
         assert_eq!(closest("j3.s", c, 1), vec!["j2.s"]);
+        // A component of an instance is found through its sub-component.
+        let c = [
+            "j1.w",
+            "j1.a",
+            "j2.s",
+            "b1.body.m",
+            "b1.frame_a.f[1]",
+            "b2.body.m",
+        ];
+        assert_eq!(closest("b1.m", c, 2), vec!["b1.body.m", "b2.body.m"]);
+        // A typo in the variable keeps to its instance.
+        assert_eq!(closest("j1.ww", c, 1), vec!["j1.w"]);
+        // A typo in the instance: edit distance over the whole path.
+        assert_eq!(closest("b3.body.m", c, 2), vec!["b1.body.m", "b2.body.m"]);
         assert_eq!(
             list(&["a".into(), "b".into(), "c".into()], 2),
             "a, b, ... (1 more)"

@@ -176,6 +176,8 @@ pub enum SystemItem {
     Instance {
         /// Instance name.
         name: Ident,
+        /// The component type, when written (`b: BodyShape = shape(0.5);`).
+        ty: Option<syn::Type>,
         /// The component value.
         value: Expr,
     },
@@ -197,11 +199,28 @@ pub enum SystemItem {
     },
 }
 
-/// `system! { name: "m"; items }`
+/// `system! { name: "m"; items }`, or a function that builds the model:
+/// `system! { pub fn fourbar(d: f64) -> FourBar { items } }`.
 #[derive(Clone)]
 pub struct SystemDef {
-    /// The model name (default `model`).
+    /// The function form's attributes, visibility and signature (its return type names
+    /// the handles struct).
+    pub function: Option<SystemFn>,
+    /// The model name (default: the function's name, else `model`).
     pub name: Option<LitStr>,
     /// The statements.
     pub items: Vec<SystemItem>,
+}
+
+/// The function around a `system!` in its function form.
+#[derive(Clone)]
+pub struct SystemFn {
+    /// Doc comments and other attributes.
+    pub attrs: Vec<syn::Attribute>,
+    /// Visibility of the function and of the handles struct.
+    pub vis: syn::Visibility,
+    /// The signature; its return type is the name of the handles struct.
+    pub sig: syn::Signature,
+    /// The handles struct's name.
+    pub handles: Ident,
 }

@@ -24,6 +24,39 @@ fn lib() -> TokenStream {
     quote!(::multibody::__private)
 }
 
+/// The unit a doc comment declares: its last bracketed token outside code spans, as
+/// rustdoc docs write it (`Rotation angle \[rad\]`, `Torque \[N.m\]`); `None`
+/// when there is none.
+pub fn doc_unit(text: &str) -> Option<String> {
+    let mut plain = String::with_capacity(text.len());
+    let mut in_code = false;
+    for c in text.chars() {
+        match c {
+            '`' => in_code = !in_code,
+            '\\' => {}
+            c if !in_code => plain.push(c),
+            _ => {}
+        }
+    }
+    let close = plain.rfind(']')?;
+    let open = plain[..close].rfind('[')?;
+    let unit = plain[open + 1..close].trim();
+    let valid = !unit.is_empty()
+        && unit.len() <= 24
+        && unit
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "./-^%".contains(c));
+    valid.then(|| unit.to_string())
+}
+
+/// `.unit("rad")` when the doc text declares a unit (see [`doc_unit`]).
+fn unit_call(text: &str) -> TokenStream {
+    match doc_unit(text) {
+        Some(u) => quote!(.unit(#u)),
+        None => TokenStream::new(),
+    }
+}
+
 /// The text of doc comments, joined into one line.
 pub fn doc_text(docs: &[Attribute]) -> String {
     let mut parts = Vec::new();
@@ -160,11 +193,12 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 handle_init
                     .extend(quote!(#n: <#ty as #p::ParameterType>::at(&#p::member(path, #s)),));
                 let mods = variable_modifiers(modifiers);
+                let unit = unit_call(&desc);
                 parameters.extend(quote!(
                     let #n = #p::ParameterType::declare(
                         &self.#n,
                         __s,
-                        #p::Parameter::new(#s, 0.0).description(#desc) #mods,
+                        #p::Parameter::new(#s, 0.0).description(#desc) #unit #mods,
                     );
                 ));
             }
@@ -224,9 +258,10 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 handle_fields.extend(quote!(#docs pub #n: #ty,));
                 handle_init
                     .extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
+                let unit = unit_call(&desc);
                 variables.extend(quote!(
                     let #n: #ty = __s.declare::<#ty>(
-                        #p::Variable::new(#s).description(#desc) #mods
+                        #p::Variable::new(#s).description(#desc) #unit #mods
                     );
                 ));
             }
@@ -315,7 +350,7 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
         }
 
         #[doc = #handle_doc]
-        #[derive(Clone, Debug)]
+        #[derive(Clone, Copy, Debug)]
         #[allow(non_snake_case)]
         #vis struct #handle {
             /// The instance's full path.
@@ -421,17 +456,18 @@ pub fn connector(def: &ConnectorDef) -> syn::Result<TokenStream> {
         let (docs, n, ty) = (&v.docs, &v.name, &v.ty);
         let s = n.to_string();
         let vd = doc_text(docs);
+        let unit = unit_call(&vd);
         let kind = role_tokens(v.role);
         let docs = docs_escaped(docs);
         fields.extend(quote!(#docs pub #n: #ty,));
         init.extend(quote!(#n: <#ty as #p::VariableType>::at(&#p::member(path, #s)),));
         if v.role == ConnectorRole::Overdetermined {
             build.extend(quote!(
-                __s.declare_overdetermined::<#ty>(#p::Variable::new(#s).description(#vd));
+                __s.declare_overdetermined::<#ty>(#p::Variable::new(#s).description(#vd) #unit);
             ));
         } else {
             build.extend(quote!(
-                __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd));
+                __s.declare::<#ty>(#p::Variable::new(#s).kind(#kind).description(#vd) #unit);
             ));
         }
     }
@@ -496,29 +532,145 @@ fn with_defaults(value: &Expr) -> Expr {
     }
 }
 
-/// Expands `system!`.
+/// Expands `system!`: a block that builds the model and returns it with its handles
+/// (`Model<Handles>`), or, in the function form, the handles struct and the function.
 pub fn system(def: &SystemDef) -> syn::Result<TokenStream> {
     let p = lib();
-    let name = match &def.name {
-        Some(s) => s.value(),
-        None => "model".to_string(),
+    let name = match (&def.name, &def.function) {
+        (Some(s), _) => s.value(),
+        (None, Some(f)) => f.sig.ident.to_string(),
+        (None, None) => "model".to_string(),
     };
+    let instances = system_instances(def)?;
+    let body = system_body(def);
+    let fields: Vec<&Ident> = instances.iter().map(|(n, _)| *n).collect();
+    let Some(function) = &def.function else {
+        let params: Vec<Ident> = (0..fields.len())
+            .map(|i| quote::format_ident!("H{}", i))
+            .collect();
+        let generics = if params.is_empty() {
+            quote!()
+        } else {
+            quote!(<#(#params),*>)
+        };
+        return Ok(quote!({
+            /// The typed handle of every instance of the model, a field each.
+            #[derive(Clone, Copy, Debug)]
+            #[allow(non_camel_case_types, dead_code)]
+            pub struct Handles #generics {
+                #(
+                    #[allow(missing_docs)]
+                    pub #fields: #params,
+                )*
+            }
+            let mut __s = #p::System::new(#name);
+            #body
+            #p::Model::new(__s, Handles { #(#fields),* })
+        }));
+    };
+    let mut types = Vec::new();
+    for (n, ty) in &instances {
+        match ty {
+            Some(t) => types.push(quote!(<#t as #p::TypedComponent>::Handle)),
+            None => {
+                return Err(syn::Error::new(
+                    n.span(),
+                    format!(
+                        "the type of `{n}` is not written: in a model function each instance \
+                         is `{n} = Type {{ .. }}`, `{n} = Type::constructor(..)` or \
+                         `{n}: Type = value`, so that its handle has a type"
+                    ),
+                ));
+            }
+        }
+    }
+    let SystemFn {
+        attrs,
+        vis,
+        sig,
+        handles,
+    } = function;
+    let mut sig = sig.clone();
+    sig.output = syn::parse_quote!(-> #p::Model<#handles>);
+    let struct_doc = format!(
+        "The typed handles of the instances of the model built by [`{}`], a field each.",
+        sig.ident
+    );
+    let field_docs: Vec<String> = fields.iter().map(|f| format!("`{f}`")).collect();
+    Ok(quote!(
+        #[doc = #struct_doc]
+        #[derive(Clone, Copy, Debug)]
+        #vis struct #handles {
+            #(
+                #[doc = #field_docs]
+                pub #fields: #types,
+            )*
+        }
+
+        #(#attrs)*
+        #vis #sig {
+            let mut __s = #p::System::new(#name);
+            #body
+            #p::Model::new(__s, #handles { #(#fields),* })
+        }
+    ))
+}
+
+/// The instances in order, with their component types where known: written
+/// (`b: BodyShape = ..`), a struct literal (`Revolute { .. }`) or a constructor call
+/// (`World::default()`). Rejects a name declared twice.
+fn system_instances(def: &SystemDef) -> syn::Result<Vec<(&Ident, Option<syn::Type>)>> {
+    let mut seen: std::collections::HashSet<String> = Default::default();
+    let mut out = Vec::new();
+    for item in &def.items {
+        if let SystemItem::Instance { name, ty, value } = item {
+            if !seen.insert(name.to_string()) {
+                return Err(syn::Error::new(
+                    name.span(),
+                    format!("`{name}` is declared twice"),
+                ));
+            }
+            out.push((name, ty.clone().or_else(|| component_type(value))));
+        }
+    }
+    Ok(out)
+}
+
+/// The component type an instance's value names: `Type { .. }` or `Type::f(..)`.
+fn component_type(value: &Expr) -> Option<syn::Type> {
+    let path = match value {
+        Expr::Struct(s) => s.path.clone(),
+        Expr::Call(c) => match &*c.func {
+            Expr::Path(p) if p.qself.is_none() && p.path.segments.len() >= 2 => {
+                let mut path = p.path.clone();
+                path.segments.pop();
+                let last = path.segments.pop().expect("two segments").into_value();
+                path.segments.push(last);
+                path
+            }
+            _ => return None,
+        },
+        _ => return None,
+    };
+    Some(syn::Type::Path(syn::TypePath { qself: None, path }))
+}
+
+/// The statements that add instances, connections and equations to `__s`.
+fn system_body(def: &SystemDef) -> TokenStream {
+    let p = lib();
     let mut body = TokenStream::new();
-    let mut seen: std::collections::HashMap<String, Ident> = Default::default();
     for item in &def.items {
         match item {
-            SystemItem::Instance { name: n, value } => {
-                if seen.insert(n.to_string(), n.clone()).is_some() {
-                    return Err(syn::Error::new(
-                        n.span(),
-                        format!("`{n}` is declared twice"),
-                    ));
-                }
+            SystemItem::Instance { name: n, ty, value } => {
                 let s = n.to_string();
                 let v = with_defaults(value);
+                let add = match ty {
+                    Some(t) => quote_spanned!(value.span()=> __s.add_typed::<#t>(#s, &(#v))),
+                    None => quote_spanned!(value.span()=> __s.add_typed(#s, &(#v))),
+                };
                 body.extend(quote_spanned!(value.span()=>
                     #[allow(unused_variables, clippy::needless_update)]
-                    let #n = __s.add_typed(#s, &(#v));
+                    let #n = #add;
                 ));
             }
             SystemItem::Connect { a, b } => {
@@ -542,9 +694,5 @@ pub fn system(def: &SystemDef) -> syn::Result<TokenStream> {
             }
         }
     }
-    Ok(quote!({
-        let mut __s = #p::System::new(#name);
-        #body
-        __s
-    }))
+    body
 }

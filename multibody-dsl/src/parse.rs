@@ -302,12 +302,75 @@ impl Parse for ConnectorDef {
 
 impl Parse for SystemDef {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
+        let fork = input.fork();
+        let _ = fork.call(syn::Attribute::parse_outer);
+        let _ = fork.parse::<syn::Visibility>();
+        if fork.peek(Token![fn]) {
+            return parse_system_fn(input);
+        }
+        parse_system_items(input, None)
+    }
+}
+
+/// `#[attrs] vis fn name(args) -> Handles { items }`
+fn parse_system_fn(input: ParseStream<'_>) -> syn::Result<SystemDef> {
+    let attrs = input.call(syn::Attribute::parse_outer)?;
+    let vis: syn::Visibility = input.parse()?;
+    let sig: syn::Signature = input.parse()?;
+    let handles = match &sig.output {
+        syn::ReturnType::Type(_, ty) => match &**ty {
+            syn::Type::Path(p) if p.qself.is_none() && p.path.get_ident().is_some() => {
+                p.path.get_ident().cloned().expect("checked")
+            }
+            other => {
+                return Err(syn::Error::new_spanned(
+                    other,
+                    "the return type names the struct of handles that `system!` declares: \
+                     one identifier, like `-> FourBar`",
+                ));
+            }
+        },
+        syn::ReturnType::Default => {
+            return Err(syn::Error::new_spanned(
+                &sig,
+                "a model function names the struct of its handles as its return type: \
+                 `fn fourbar() -> FourBar { ... }` (it returns `Model<FourBar>`)",
+            ));
+        }
+    };
+    if !sig.generics.params.is_empty() {
+        return Err(syn::Error::new_spanned(
+            &sig.generics,
+            "a model function takes no generic parameters",
+        ));
+    }
+    let content;
+    syn::braced!(content in input);
+    let function = SystemFn {
+        attrs,
+        vis,
+        sig,
+        handles,
+    };
+    let def = parse_system_items(&content, Some(function))?;
+    if !input.is_empty() {
+        return Err(input.error("one model function per `system!`"));
+    }
+    Ok(def)
+}
+
+/// The statements of a `system!`.
+fn parse_system_items(
+    input: ParseStream<'_>,
+    function: Option<SystemFn>,
+) -> syn::Result<SystemDef> {
+    {
         let mut name = None;
         let mut items = Vec::new();
         while !input.is_empty() {
             let ident: Ident = input.parse()?;
             let kw = ident.to_string();
-            if kw == "name" && input.peek(Token![:]) {
+            if kw == "name" && input.peek(Token![:]) && input.peek2(LitStr) {
                 input.parse::<Token![:]>()?;
                 name = Some(input.parse::<LitStr>()?);
             } else if kw == "connect" && input.peek(syn::token::Paren) {
@@ -344,19 +407,34 @@ impl Parse for SystemDef {
                     }
                 }
             } else {
+                let ty = if input.peek(Token![:]) {
+                    input.parse::<Token![:]>()?;
+                    Some(input.parse::<syn::Type>()?)
+                } else {
+                    None
+                };
                 input.parse::<Token![=]>().map_err(|e| {
                     syn::Error::new(
                         e.span(),
-                        "expected `name = Component { ... };`, `connect(a, b);` or `equation lhs = rhs;`",
+                        "expected `name = Component { ... };`, `name: Type = value;`, \
+                         `connect(a, b);` or `equation lhs = rhs;`",
                     )
                 })?;
                 let value: Expr = input.parse()?;
-                items.push(SystemItem::Instance { name: ident, value });
+                items.push(SystemItem::Instance {
+                    name: ident,
+                    ty,
+                    value,
+                });
             }
             if !input.is_empty() {
                 input.parse::<Token![;]>()?;
             }
         }
-        Ok(SystemDef { name, items })
+        Ok(SystemDef {
+            function,
+            name,
+            items,
+        })
     }
 }

@@ -318,3 +318,21 @@ fn a_signal_connector_takes_a_start_and_nothing_else() {
     let e = error_of(quote! { struct X { connector y(fixed = true): RealOutput; } });
     assert!(e.contains("only `start`") && e.contains("`fixed`"), "{e}");
 }
+
+#[test]
+fn units_are_read_from_doc_comments() {
+    use crate::expand::doc_unit;
+    assert_eq!(doc_unit("Rotation angle \\[rad\\]").as_deref(), Some("rad"));
+    assert_eq!(
+        doc_unit("Angular acceleration `der(w)` \\[rad/s2\\].").as_deref(),
+        Some("rad/s2")
+    );
+    assert_eq!(
+        doc_unit("Torque \\[N.m\\] on `frame_b`").as_deref(),
+        Some("N.m")
+    );
+    // Brackets in code spans are indices, not units.
+    assert_eq!(doc_unit("Position `r_0[1]` of the frame"), None);
+    assert_eq!(doc_unit("A sentence [with words] in brackets"), None);
+    assert_eq!(doc_unit("No unit"), None);
+}

@@ -44,7 +44,7 @@ pub(crate) fn valid_axis(n: [f64; 3]) -> bool {
 pub(crate) fn invalid_axis(name: &str, n: [f64; 3]) -> String {
     format!(
         "the axis {name} = {} must be a nonzero vector",
-        crate::model::show_values(&n)
+        multibody_core::model::show_values(&n)
     )
 }
 

@@ -78,14 +78,14 @@ component! {
         equation {
             assert(
                 normalize(rRod_ia).is_some(),
-                format!("the rod rRod_ia = {} must not be zero", crate::model::show_values(&rRod_ia))
+                format!("the rod rRod_ia = {} must not be zero", multibody_core::model::show_values(&rRod_ia))
             );
             assert(
                 normalize(cross(n1_a, rRod_ia)).is_some(),
                 format!(
                     "the axis n1_a = {} must be nonzero and not parallel to rRod_ia = {}",
-                    crate::model::show_values(&n1_a),
-                    crate::model::show_values(&rRod_ia)
+                    multibody_core::model::show_values(&n1_a),
+                    multibody_core::model::show_values(&rRod_ia)
                 )
             );
             let e_rod_ia = normalized(rRod_ia);

@@ -1,6 +1,6 @@
 //! Rendering errors.
 
-use crate::solve::SolutionError;
+use multibody_core::solve::SolutionError;
 
 /// What can go wrong when rendering.
 #[derive(Debug, thiserror::Error)]

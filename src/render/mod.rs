@@ -54,8 +54,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::solve::SolutionError;
 use crate::{Solution, System};
+use multibody_core::solve::SolutionError;
 
 use camera::Camera;
 pub use error::RenderError;
@@ -249,7 +249,7 @@ fn write_error(path: &Path) -> impl Fn(String) -> RenderError + '_ {
 /// Renders the solution of `model` at [`RenderOptions::times`] to an animated GIF at
 /// `path` (looping forever).
 pub fn render(
-    model: &System,
+    model: &(impl AsRef<System> + ?Sized),
     solution: &Solution,
     path: impl AsRef<Path>,
     options: &RenderOptions,
@@ -265,7 +265,7 @@ pub fn render(
             }
         },
     };
-    let mut renderer = Renderer::new(model, solution, &times, options)?;
+    let mut renderer = Renderer::new(model.as_ref(), solution, &times, options)?;
     let err = write_error(path);
     let size = (options.width, options.height);
     let mut backend =
@@ -282,12 +282,12 @@ pub fn render(
 
 /// Renders the solution of `model` at time `t` to an image in memory.
 pub fn render_image(
-    model: &System,
+    model: &(impl AsRef<System> + ?Sized),
     solution: &Solution,
     t: f64,
     options: &RenderOptions,
 ) -> Result<Image, RenderError> {
-    let mut renderer = Renderer::new(model, solution, &[t], options)?;
+    let mut renderer = Renderer::new(model.as_ref(), solution, &[t], options)?;
     Ok(Image {
         width: options.width,
         height: options.height,
@@ -297,7 +297,7 @@ pub fn render_image(
 
 /// Renders the solution of `model` at time `t` to a PNG image at `path`.
 pub fn render_frame(
-    model: &System,
+    model: &(impl AsRef<System> + ?Sized),
     solution: &Solution,
     t: f64,
     path: impl AsRef<Path>,

@@ -8,9 +8,9 @@ use multibody::prelude::*;
 use multibody::rotational::{Fixed, Inertia, Spring, SpringDamper};
 use multibody::translational;
 
-/// A mass `m` on a spring `c` and a damper `d` to a fixed point, starting at 0.1 m.
-pub fn mass_spring_damper(m: f64, c: f64, d: f64) -> System {
-    system! {
+system! {
+    /// A mass `m` on a spring `c` and a damper `d` to a fixed point, starting at 0.1 m.
+    pub fn mass_spring_damper(m: f64, c: f64, d: f64) -> MassSpringDamper {
         name: "mass_spring";
         fixed = translational::Fixed::default();
         spring = translational::Spring { c };
@@ -23,9 +23,9 @@ pub fn mass_spring_damper(m: f64, c: f64, d: f64) -> System {
     }
 }
 
-/// A 10 V source charging 1 mF through 1 kOhm.
-pub fn rc_circuit() -> System {
-    system! {
+system! {
+    /// A 10 V source charging 1 mF through 1 kOhm.
+    pub fn rc_circuit() -> RcCircuit {
         name: "rc";
         source = ConstantVoltage { V: 10.0 };
         resistor = Resistor { R: 1000.0 };
@@ -38,9 +38,9 @@ pub fn rc_circuit() -> System {
     }
 }
 
-/// Two free inertias `j1`, `j2` coupled by a spring-damper `c`, `d`.
-pub fn two_inertias(j1: f64, j2: f64, c: f64, d: f64) -> System {
-    system! {
+system! {
+    /// Two free inertias `j1`, `j2` coupled by a spring-damper `c`, `d`.
+    pub fn two_inertias(j1: f64, j2: f64, c: f64, d: f64) -> TwoInertias {
         name: "chain";
         inertia1 = Inertia { J: j1 };
         coupling = SpringDamper { c, d };
@@ -50,9 +50,9 @@ pub fn two_inertias(j1: f64, j2: f64, c: f64, d: f64) -> System {
     }
 }
 
-/// A unit inertia on a spring `c` to a fixed point, starting at 1 rad.
-pub fn undamped_oscillator(c: f64) -> System {
-    system! {
+system! {
+    /// A unit inertia on a spring `c` to a fixed point, starting at 1 rad.
+    pub fn undamped_oscillator(c: f64) -> UndampedOscillator {
         name: "undamped";
         fixed = Fixed::default();
         spring = Spring { c };
@@ -62,9 +62,9 @@ pub fn undamped_oscillator(c: f64) -> System {
     }
 }
 
-/// A Wheatstone bridge driven by 10 V with a capacitor across its outputs.
-pub fn bridge() -> System {
-    system! {
+system! {
+    /// A Wheatstone bridge driven by 10 V with a capacitor across its outputs.
+    pub fn bridge() -> Bridge {
         name: "bridge";
         source = ConstantVoltage { V: 10.0 };
         r1 = Resistor { R: 100.0 };
@@ -104,10 +104,10 @@ component! {
     }
 }
 
-/// 5 V through a cubic resistor (R0 = 1, a = 2) into 2 Ohm parallel to 0.1 F: a
-/// nonlinear algebraic loop.
-pub fn cubic_loop() -> System {
-    system! {
+system! {
+    /// 5 V through a cubic resistor (R0 = 1, a = 2) into 2 Ohm parallel to 0.1 F: a
+    /// nonlinear algebraic loop.
+    pub fn cubic_loop() -> CubicLoop {
         name: "cubic_loop";
         source = ConstantVoltage { V: 5.0 };
         nonlinear = CubicResistor { R0: 1.0, a: 2.0 };

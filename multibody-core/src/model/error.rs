@@ -61,6 +61,23 @@ pub enum ModelError {
         /// What is wrong, naming the parameter and its value.
         message: String,
     },
+    /// Components refer to an instance by a name that the model does not declare at its
+    /// top (Modelica's `inner`: bodies and joints read gravity from `world`).
+    #[error(
+        "model `{model}` has no instance `{name}` ({type_name}), which its components \
+         refer to by that name{}",
+        found_inner(.name, .found)
+    )]
+    MissingInner {
+        /// The model.
+        model: String,
+        /// The name the components use.
+        name: String,
+        /// The type it must have.
+        type_name: String,
+        /// Instances of that type under other names.
+        found: Vec<String>,
+    },
     /// An assertion of a component refers to variables: only conditions on parameters
     /// are supported.
     #[error(
@@ -133,4 +150,20 @@ fn unbalanced_message(
         ));
     }
     m
+}
+
+/// `: add one` or `; rename `w` to `world``, for [`ModelError::MissingInner`].
+fn found_inner(name: &str, found: &[String]) -> String {
+    match found {
+        [] => format!(": add one named `{name}`"),
+        [one] => format!("; the model has one named `{one}`: name it `{name}`"),
+        many => format!(
+            "; the model has {} named {}: name one `{name}`",
+            many.len(),
+            many.iter()
+                .map(|f| format!("`{f}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
 }

@@ -288,19 +288,28 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
 const PREFETCH_AHEAD: usize = 4;
 
 /// Where an expression being translated comes from, in words.
+/// Characters of an equation that a message about it shows.
+const PLACE_CHARS: usize = 160;
+
 fn describe_place(origin: &Origin, stores: &LockedStores<'_>) -> String {
     match origin {
         Origin::Component { path, equation } => format!(
-            "{}: {} = {}",
+            "{}: {}",
             if path.is_empty() { "model" } else { path },
-            stores.show(equation.lhs),
-            stores.show(equation.rhs)
+            crate::names::elide(
+                &format!(
+                    "{} = {}",
+                    stores.show(equation.lhs),
+                    stores.show(equation.rhs)
+                ),
+                PLACE_CHARS
+            )
         ),
         Origin::FixedStart { var } => format!("the start value or binding of {var}"),
         Origin::Assertion { path, condition } => format!(
             "{}: assert({})",
             if path.is_empty() { "model" } else { path },
-            stores.show(*condition)
+            crate::names::elide(&stores.show(*condition), PLACE_CHARS)
         ),
         _ => "a connection".into(),
     }

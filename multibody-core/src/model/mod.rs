@@ -6,6 +6,7 @@ mod connection_graph;
 mod error;
 mod flatten;
 mod graph;
+mod named;
 mod path_index;
 mod shared_text;
 mod system;
@@ -19,6 +20,7 @@ pub use flatten::{
     FlatAssertion, FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten,
 };
 pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
+pub use named::{Named, names};
 pub use shared_text::SharedText;
 pub use system::{
     Assertion, Checks, Component, Condition, Connection, Equation, StructuralValue, System,
@@ -26,7 +28,7 @@ pub use system::{
 };
 pub use text::{EquationText, FlatOrigins};
 pub use typed::{
-    Connector, ConnectorHandle, Equate, ParameterType, PathId, Real, Signal, Signal3,
+    Connector, ConnectorHandle, Equate, Model, ParameterType, PathId, Real, Signal, Signal3,
     TypedComponent, VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,
 };
 pub use variable::{Parameter, StateSelect, VarKind, Variable};

@@ -13,6 +13,72 @@ use crate::expr::Expr;
 use super::system::{Component, System, join_path};
 use super::variable::{Parameter, VarKind, Variable};
 
+/// A model built by `system!`: the system, and the typed handle of every instance as a
+/// field (`model.j1.phi`, `model.b1.frame_a`), reached through `Deref`. Functions that
+/// take a model take `&Model` as well as `&System` ([`AsRef<System>`]).
+#[derive(Clone, Debug)]
+pub struct Model<H> {
+    system: System,
+    handles: H,
+}
+
+impl<H> Model<H> {
+    /// A model of `system` with the handles of its instances.
+    pub fn new(system: System, handles: H) -> Self {
+        Model { system, handles }
+    }
+
+    /// The system.
+    pub fn system(&self) -> &System {
+        &self.system
+    }
+
+    /// The system, to add to it (builder calls).
+    pub fn system_mut(&mut self) -> &mut System {
+        &mut self.system
+    }
+
+    /// The handles.
+    pub fn handles(&self) -> &H {
+        &self.handles
+    }
+
+    /// The system alone.
+    pub fn into_system(self) -> System {
+        self.system
+    }
+
+    /// The system and the handles.
+    pub fn into_parts(self) -> (System, H) {
+        (self.system, self.handles)
+    }
+}
+
+impl<H> std::ops::Deref for Model<H> {
+    type Target = H;
+    fn deref(&self) -> &H {
+        &self.handles
+    }
+}
+
+impl<H> AsRef<System> for Model<H> {
+    fn as_ref(&self) -> &System {
+        &self.system
+    }
+}
+
+impl AsRef<System> for System {
+    fn as_ref(&self) -> &System {
+        self
+    }
+}
+
+impl<H> From<Model<H>> for System {
+    fn from(m: Model<H>) -> System {
+        m.system
+    }
+}
+
 /// A component whose instances have a typed handle.
 pub trait TypedComponent: Component {
     /// The handle type: connectors, variables and parameters as fields.

@@ -191,6 +191,9 @@ pub struct SimplifiedSystem {
     /// The names of `parameters` with their lookup, built for the first solution and
     /// shared by every later one.
     pub(crate) parameter_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
+    /// The names of the unknowns with their lookup (for `der(x)` in solutions), built
+    /// for the first solution and shared likewise.
+    pub(crate) unknown_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
     /// Per parameter: whether its value was folded in at compile time.
     pub(crate) evaluated_parameters: Vec<bool>,
     /// Conditions on parameters, checked for each problem's values.
@@ -383,6 +386,16 @@ impl SimplifiedSystem {
             .clone()
     }
 
+    /// The names of the unknowns with their lookup (built once, shared).
+    pub(crate) fn unknown_index(&self) -> std::sync::Arc<crate::names::NameIndex> {
+        self.unknown_index
+            .get_or_init(|| {
+                let names = self.unknowns().into_iter().map(Into::into).collect();
+                std::sync::Arc::new(crate::names::NameIndex::new(names))
+            })
+            .clone()
+    }
+
     /// Names of the parameters whose values were folded into the equations at compile
     /// time (marked `evaluate`, or all with
     /// [`SimplifyOptions::evaluate_parameters`](super::SimplifyOptions)); a problem
@@ -397,7 +410,8 @@ impl SimplifiedSystem {
     }
 
     /// Names of every variable that a solution can return: the model's variables and
-    /// the derivatives that the reduced system contains (`der(j1.w)`).
+    /// the derivatives that the reduced system contains, and those that are another
+    /// variable (`der(j1.phi)`, which is `j1.w`).
     pub fn variable_names(&self) -> Vec<String> {
         self.compiled
             .observed_names

@@ -5,6 +5,7 @@
 //! integrates with IDA (the only FFI of the project lives in [`ida`] and the linear
 //! solver glue) and returns a [`Solution`].
 
+mod builder;
 mod dynamic;
 mod error;
 pub mod ida;
@@ -16,6 +17,7 @@ mod problem;
 mod project;
 mod solution;
 
+pub use builder::ProblemBuilder;
 pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
 pub use options::{LinearSolverChoice, SolverOptions};

@@ -14,10 +14,13 @@ pub enum LinearSolverChoice {
     /// where that keeps it much sparser (multibody chains; see
     /// [`ExtendedJacobian`](crate::codegen::ExtendedJacobian)).
     Sparse,
-    /// Sparse LU with the plain compiled Jacobian, never extended (for
+    /// Sparse LU with the plain compiled Jacobian, never extended (for the benchmarks'
     /// comparisons).
+    #[doc(hidden)]
     SparsePlain,
-    /// SUNDIALS' dense LU with IDA's difference-quotient Jacobian (for comparisons).
+    /// SUNDIALS' dense LU with IDA's difference-quotient Jacobian (for the benchmarks'
+    /// comparisons).
+    #[doc(hidden)]
     DenseDifferenceQuotient,
 }
 

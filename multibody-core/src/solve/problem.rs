@@ -801,6 +801,8 @@ impl<'a> DaeProblem<'a> {
             names: sys.compiled.observed_names.clone(),
             layout: sys.compiled.layout,
             parameter_names: sys.parameter_index(),
+            unknown_names: sys.unknown_index(),
+            variables: sys.variables.clone(),
             differential: sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
             t: run.t,
             u: run.u,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use crate::codegen::Tape;
 use crate::codegen::dae::InputLayout;
-use crate::model::SharedText;
+use crate::model::{Named, SharedText, Variable};
 use crate::names::NameIndex;
 
 use super::error::SolutionError;
@@ -26,6 +26,10 @@ pub struct Solution {
     /// Names of the tunable parameters (the order of the segments' values), shared
     /// likewise.
     parameter_names: Arc<NameIndex>,
+    /// Names of the unknowns (whose derivatives are `der(name)`), shared likewise.
+    unknown_names: Arc<NameIndex>,
+    /// The model's variables (their units), shared likewise.
+    variables: Arc<Vec<Variable>>,
     differential: Vec<bool>,
     t: Vec<f64>,
     u: Vec<f64>,
@@ -59,6 +63,10 @@ pub(crate) struct SolutionParts {
     pub layout: InputLayout,
     /// The names of the tunable parameters.
     pub parameter_names: Arc<NameIndex>,
+    /// The names of the unknowns.
+    pub unknown_names: Arc<NameIndex>,
+    /// The model's variables.
+    pub variables: Arc<Vec<Variable>>,
     /// Per unknown: whether it is differential (interpolated by cubic Hermite).
     pub differential: Vec<bool>,
     /// The reported times, unknowns and derivatives (point-major).
@@ -84,6 +92,8 @@ impl Solution {
             names: p.names,
             layout: p.layout,
             parameter_names: p.parameter_names,
+            unknown_names: p.unknown_names,
+            variables: p.variables,
             differential: p.differential,
             t: p.t,
             u: p.u,
@@ -143,7 +153,9 @@ impl Solution {
 
     /// The value of the tunable parameter `name` in this solution: its default, the
     /// problem's override, or the value computed at initialization (a rod length).
-    pub fn parameter(&self, name: &str) -> Result<f64, SolutionError> {
+    pub fn parameter(&self, name: impl Named) -> Result<f64, SolutionError> {
+        let name = name.name();
+        let name: &str = &name;
         self.parameter_names
             .position(name)
             .and_then(|k| self.segments[0].params.get(k).copied())
@@ -153,13 +165,70 @@ impl Solution {
             })
     }
 
+    /// Where `name`'s values are in the buffer [`Self::evaluate`] fills: an output of the
+    /// observed function; past those, the derivative of a differential unknown,
+    /// `der(x)`; past those, a tunable parameter (constant within a segment).
     fn lookup(&self, name: &str) -> Result<usize, SolutionError> {
-        self.names
-            .position(name)
-            .ok_or_else(|| SolutionError::UnknownVariable {
-                name: name.to_string(),
-                suggestions: self.names.closest(name, 3),
-            })
+        if let Some(i) = self.names.position(name) {
+            return Ok(i);
+        }
+        let outputs = self.observed.n_outputs();
+        let derivative = derivative_of(name);
+        if let Some(inner) = derivative
+            && let Some(k) = self.unknown_names.position(inner)
+            && self.differential.get(k) == Some(&true)
+        {
+            return Ok(outputs + k);
+        }
+        if let Some(j) = self.parameter_names.position(name)
+            && j < self.layout.n_params
+        {
+            return Ok(outputs + self.layout.n + j);
+        }
+        let suggestions = match derivative {
+            Some(inner) => {
+                let states = self
+                    .unknown_names
+                    .names()
+                    .iter()
+                    .zip(&self.differential)
+                    .filter(|(_, d)| **d)
+                    .map(|(n, _)| &**n);
+                crate::names::closest(inner, states, 3)
+                    .into_iter()
+                    .map(|n| format!("der({n})"))
+                    .collect()
+            }
+            None => {
+                let variables = self.names.names().iter().map(|s| &**s);
+                let parameters = self.parameter_names.names().iter().map(|s| &**s);
+                crate::names::closest(name, variables.chain(parameters), 3)
+            }
+        };
+        Err(SolutionError::UnknownVariable {
+            name: name.to_string(),
+            suggestions,
+        })
+    }
+
+    /// The unit of a variable as declared (`"rad"`, `"m/s"`; for `der(x)`, x's unit per
+    /// second), or `None` when it declares none.
+    pub fn unit(&self, name: impl Named) -> Option<String> {
+        let name = name.name();
+        let (inner, per_second) = match derivative_of(&name) {
+            Some(inner) => (inner, true),
+            None => (&*name, false),
+        };
+        let v = self.variables.iter().find(|v| &*v.name == inner)?;
+        let unit: &str = &v.unit;
+        if unit.is_empty() {
+            return None;
+        }
+        Some(if per_second {
+            per_second_unit(unit)
+        } else {
+            unit.to_string()
+        })
     }
 
     /// Evaluates the observed function at `t`: `Err` with the reason when it fails.
@@ -180,10 +249,23 @@ impl Solution {
             let up0 = self.layout.up(0);
             inputs[up0..up0 + n].copy_from_slice(up);
         }
-        self.observed.eval(inputs, ws, out).map_err(|e| {
-            out.iter_mut().for_each(|v| *v = f64::NAN);
-            e.message
-        })
+        let outputs = self.observed.n_outputs();
+        out[outputs..outputs + n].copy_from_slice(up);
+        for j in 0..self.layout.n_params {
+            out[outputs + n + j] = inputs[self.layout.param(j)];
+        }
+        self.observed
+            .eval(inputs, ws, &mut out[..outputs])
+            .map_err(|e| {
+                out[..outputs].iter_mut().for_each(|v| *v = f64::NAN);
+                e.message
+            })
+    }
+
+    /// The length of the buffer [`Self::evaluate`] fills: the observed outputs, the
+    /// derivatives of the unknowns and the parameters.
+    fn out_len(&self) -> usize {
+        self.observed.n_outputs() + self.layout.n + self.layout.n_params
     }
 
     /// Outputs `idx` of an evaluation at `t` (`result` of [`Self::evaluate`]) appended
@@ -226,14 +308,17 @@ impl Solution {
         }
     }
 
-    /// The values of a variable at the reported times.
-    pub fn get(&self, name: &str) -> Result<Vec<f64>, SolutionError> {
+    /// The values of a variable (a path, `"j1.phi"` or `"der(j1.w)"`, or a handle's
+    /// field, `model.j1.phi`) at the reported times.
+    pub fn get(&self, name: impl Named) -> Result<Vec<f64>, SolutionError> {
         Ok(self.get_many(&[name])?.pop().expect("one series"))
     }
 
     /// The values of several variables at the reported times (one evaluation of the
     /// observed function per time for all of them).
-    pub fn get_many(&self, names: &[&str]) -> Result<Vec<Vec<f64>>, SolutionError> {
+    pub fn get_many<N: Named>(&self, names: &[N]) -> Result<Vec<Vec<f64>>, SolutionError> {
+        let names = crate::model::names(names);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
         let idx: Vec<usize> = names
             .iter()
             .map(|n| self.lookup(n))
@@ -242,7 +327,7 @@ impl Solution {
         let mut ws = self.observed.workspace();
         let mut seg = 0;
         let mut inputs = self.inputs(seg);
-        let mut out = vec![0.0; self.observed.n_outputs()];
+        let mut out = vec![0.0; self.out_len()];
         let mut series = vec![Vec::with_capacity(self.t.len()); names.len()];
         for (k, &t) in self.t.iter().enumerate() {
             if self.segments.get(seg + 1).is_some_and(|s| s.first <= k) {
@@ -251,19 +336,21 @@ impl Solution {
             }
             let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
             let r = self.evaluate(t, u, up, &mut ws, &mut inputs, &mut out);
-            self.collect(&idx, names, t, &out, r, &mut series)?;
+            self.collect(&idx, &names, t, &out, r, &mut series)?;
         }
         Ok(series)
     }
 
     /// The value of a variable at the final time.
-    pub fn final_value(&self, name: &str) -> Result<f64, SolutionError> {
+    pub fn final_value(&self, name: impl Named) -> Result<f64, SolutionError> {
+        let name = name.name();
+        let name: &str = &name;
         let i = self.lookup(name)?;
         let k = self.t.len() - 1;
         let n = self.layout.n;
         let mut ws = self.observed.workspace();
         let mut inputs = self.inputs(self.segment_of(k));
-        let mut out = vec![0.0; self.observed.n_outputs()];
+        let mut out = vec![0.0; self.out_len()];
         let (u, up) = (&self.u[k * n..(k + 1) * n], &self.up[k * n..(k + 1) * n]);
         let r = self.evaluate(self.t[k], u, up, &mut ws, &mut inputs, &mut out);
         let mut series = [Vec::new()];
@@ -322,19 +409,25 @@ impl Solution {
     }
 
     /// The value of a variable at any time of the solved interval (interpolated).
-    pub fn at(&self, name: &str, t: f64) -> Result<f64, SolutionError> {
+    pub fn at(&self, name: impl Named, t: f64) -> Result<f64, SolutionError> {
         Ok(self.sample(&[name], &[t])?[0][0])
     }
 
     /// Several variables at several times: `result[variable][time]`.
-    pub fn sample(&self, names: &[&str], times: &[f64]) -> Result<Vec<Vec<f64>>, SolutionError> {
+    pub fn sample<N: Named>(
+        &self,
+        names: &[N],
+        times: &[f64],
+    ) -> Result<Vec<Vec<f64>>, SolutionError> {
+        let names = crate::model::names(names);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
         let idx: Vec<usize> = names
             .iter()
             .map(|n| self.lookup(n))
             .collect::<Result<_, _>>()?;
         let mut ws = self.observed.workspace();
         let mut inputs = self.inputs(0);
-        let mut out = vec![0.0; self.observed.n_outputs()];
+        let mut out = vec![0.0; self.out_len()];
         let mut series = vec![Vec::with_capacity(times.len()); names.len()];
         for &t in times {
             let (u, up, k) = self.interpolate(t)?;
@@ -342,23 +435,31 @@ impl Solution {
                 self.set_params(self.segment_of(k), &mut inputs);
             }
             let r = self.evaluate(t, &u, &up, &mut ws, &mut inputs, &mut out);
-            self.collect(&idx, names, t, &out, r, &mut series)?;
+            self.collect(&idx, &names, t, &out, r, &mut series)?;
         }
         Ok(series)
     }
 
-    /// Writes `time` and the named variables (all of them when `names` is empty) at the
-    /// reported times as CSV.
-    pub fn write_csv(&self, path: impl AsRef<Path>, names: &[&str]) -> Result<(), SolutionError> {
+    /// Writes `time` and every variable at the reported times as CSV.
+    pub fn write_csv_all(&self, path: impl AsRef<Path>) -> Result<(), SolutionError> {
+        self.write_csv::<&str>(path, &[])
+    }
+
+    /// Writes `time` and the named variables (all of them when `names` is empty, see
+    /// [`write_csv_all`](Self::write_csv_all)) at the reported times as CSV.
+    pub fn write_csv<N: Named>(
+        &self,
+        path: impl AsRef<Path>,
+        names: &[N],
+    ) -> Result<(), SolutionError> {
         let path = path.as_ref();
-        let all: Vec<&str>;
-        let names = if names.is_empty() {
-            all = self.names.names().iter().map(|s| &**s).collect();
-            &all[..]
+        let names: Vec<String> = if names.is_empty() {
+            self.names.names().iter().map(|s| s.to_string()).collect()
         } else {
-            names
+            crate::model::names(names)
         };
-        let series = self.get_many(names)?;
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let series = self.get_many(&names)?;
         let io = |e: std::io::Error| SolutionError::Io {
             path: path.display().to_string(),
             message: e.to_string(),
@@ -385,5 +486,22 @@ fn csv_field(s: &str) -> String {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
         s.to_string()
+    }
+}
+
+/// `x` of a derivative's name `der(x)`.
+fn derivative_of(name: &str) -> Option<&str> {
+    let inner = name.trim().strip_prefix("der(")?.strip_suffix(')')?;
+    Some(inner.trim())
+}
+
+/// The unit of a quantity's rate: `rad` -> `rad/s`, `m/s` -> `m/s2`.
+fn per_second_unit(unit: &str) -> String {
+    if let Some(base) = unit.strip_suffix("/s") {
+        format!("{base}/s2")
+    } else if let Some(base) = unit.strip_suffix("/s2") {
+        format!("{base}/s3")
+    } else {
+        format!("{unit}/s")
     }
 }

@@ -1,0 +1,221 @@
+//! Typed access end to end: `system!` gives back the handle of every instance, and
+//! results, start values, guesses, parameters, units and plots take a handle's field
+//! (`m.j1.phi`) as well as a path. Checked against closed forms and against the same
+//! quantities read by path or computed another way.
+
+#![allow(missing_docs)]
+
+#[path = "../examples/fourbar.rs"]
+#[allow(dead_code)]
+mod fourbar_example;
+
+use multibody::joints::Revolute;
+use multibody::parts::BodyShape;
+use multibody::prelude::*;
+use multibody::rotational::{Fixed, Inertia, Spring};
+use multibody::world::World;
+
+system! {
+    /// A torsional oscillator of stiffness `c` on an inertia of 1 kg.m2.
+    fn oscillator(c: f64) -> Oscillator {
+        name: "oscillator";
+        fixed = Fixed::default();
+        spring = Spring { c };
+        inertia: Inertia = Inertia::default();
+        connect(fixed.flange, spring.flange_a);
+        connect(spring.flange_b, inertia.flange_a);
+    }
+}
+
+fn tight() -> SolverOptions {
+    SolverOptions {
+        rtol: 1e-9,
+        atol: 1e-11,
+        ..SolverOptions::default()
+    }
+}
+
+#[test]
+fn values_parameters_and_results_by_handle_match_the_closed_form() {
+    let m = oscillator(4.0);
+    let ssys = structural_simplify(&m).unwrap();
+    // Start value and a parameter set by handle: phi = 0.5 cos(3 t).
+    let sol = DaeProblem::builder(&ssys, (0.0, 2.0))
+        .value(m.inertia.phi, 0.5)
+        .value(m.spring.c, 9.0)
+        .build()
+        .unwrap()
+        .solve(&tight())
+        .unwrap();
+    let phi = sol.get(m.inertia.phi).unwrap();
+    for (t, p) in sol.t().iter().zip(&phi) {
+        assert!((p - 0.5 * (3.0 * t).cos()).abs() < 1e-6, "phi({t}) = {p}");
+    }
+    // The same series by path; the parameter as set, by handle and by path.
+    assert_eq!(sol.get("inertia.phi").unwrap(), phi);
+    assert_eq!(sol.parameter(m.spring.c).unwrap(), 9.0);
+    assert_eq!(sol.parameter("spring.c").unwrap(), 9.0);
+    // A parameter read as a series is constant.
+    assert!(sol.get(m.spring.c).unwrap().iter().all(|&c| c == 9.0));
+    // Several at once, and at a time between the reported ones.
+    let [w, a] =
+        <[Vec<f64>; 2]>::try_from(sol.get_many(&[m.inertia.w, m.inertia.a]).unwrap()).unwrap();
+    let k = sol.t().len() / 2;
+    let t = sol.t()[k];
+    assert!((w[k] + 1.5 * (3.0 * t).sin()).abs() < 1e-6);
+    assert!((a[k] + 4.5 * (3.0 * t).cos()).abs() < 1e-5);
+    let at = sol.at(m.inertia.phi, 1.234).unwrap();
+    assert!((at - 0.5 * (3.0f64 * 1.234).cos()).abs() < 1e-5);
+}
+
+#[test]
+fn handles_name_their_full_paths_and_are_copies() {
+    let m = fourbar_example::fourbar();
+    assert_eq!(m.j1.phi.name().as_deref(), Some("j1.phi"));
+    assert_eq!(m.b1.body.m.name().as_deref(), Some("b1.body.m"));
+    assert_eq!(m.damper1.d.name().as_deref(), Some("damper1.d"));
+    let h = *m.handles();
+    let copied = h.j2;
+    assert_eq!(copied.w.name().as_deref(), Some("j2.w"));
+    assert_eq!(m.system().name, "fourbar");
+}
+
+#[test]
+fn the_tutorial_fourbar_runs_by_handle_and_reads_derivatives_by_name() {
+    let m = fourbar_example::fourbar();
+    let ssys = structural_simplify(&m).unwrap();
+    let sol = DaeProblem::builder(&ssys, (0.0, 2.0))
+        .value(m.j1.phi, 0.1)
+        .guess(m.j2.phi, 0.0)
+        .build()
+        .unwrap()
+        .solve(&tight().with_output_interval(0.0, 2.0, 0.01))
+        .unwrap();
+    assert_eq!(sol.get(m.j1.phi).unwrap()[0], 0.1);
+    // Every derivative that the reduced equations print can be read, and it agrees with
+    // the variable the model defines as that derivative (the integrator's derivative of
+    // a state against the observed function).
+    let printed: Vec<String> = ssys
+        .equations()
+        .iter()
+        .filter_map(|e| {
+            e.strip_prefix("der(")?
+                .split_once(')')
+                .map(|(x, _)| x.to_string())
+        })
+        .collect();
+    assert!(!printed.is_empty());
+    for x in &printed {
+        assert!(
+            sol.get(format!("der({x})")).is_ok(),
+            "der({x}) is not readable"
+        );
+    }
+    for (state, derivative) in [("j1.phi", "j1.w"), ("j1.w", "j1.a"), ("j2.phi", "j2.w")] {
+        let Ok(d) = sol.get(format!("der({state})")) else {
+            continue;
+        };
+        let v = sol.get(derivative).unwrap();
+        let scale = v.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (k, (a, b)) in d.iter().zip(&v).enumerate() {
+            assert!(
+                (a - b).abs() < 1e-6 * scale,
+                "der({state}) = {a}, {derivative} = {b} at t = {}",
+                sol.t()[k]
+            );
+        }
+    }
+    // Units come from the components' declarations.
+    assert_eq!(sol.unit(m.j1.phi).as_deref(), Some("rad"));
+    assert_eq!(sol.unit(m.j1.w).as_deref(), Some("rad/s"));
+    assert_eq!(sol.unit("der(j1.w)").as_deref(), Some("rad/s2"));
+    assert_eq!(sol.unit(m.j1.tau).as_deref(), Some("N.m"));
+    assert_eq!(sol.unit("b1.frame_b.r_0[1]").as_deref(), Some("m"));
+}
+
+#[test]
+fn a_derivative_that_is_not_computed_is_an_error_naming_the_computed_ones() {
+    let m = oscillator(4.0);
+    let ssys = structural_simplify(&m).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 0.1))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    let states = ssys.states();
+    let e = sol.get("der(spring.tau)").unwrap_err().to_string();
+    assert!(e.contains("der(spring.tau)"), "{e}");
+    assert!(
+        states.iter().any(|s| e.contains(&format!("der({s})"))),
+        "{e} names no derivative of {states:?}"
+    );
+}
+
+#[test]
+fn a_close_but_wrong_name_suggests_the_sub_component_path() {
+    let m = system! {
+        name: "pendulum";
+        world = World::default();
+        j1 = Revolute::default();
+        b1 = BodyShape { m: 1.0, r: [1.0, 0.0, 0.0] };
+        connect(world.frame_b, j1.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+    };
+    let ssys = structural_simplify(&m).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 0.1))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    for e in [
+        sol.get("b1.m").unwrap_err().to_string(),
+        sol.parameter("b1.m").unwrap_err().to_string(),
+    ] {
+        assert!(e.contains("did you mean `b1.body.m`"), "{e}");
+    }
+    let e = sol.get("j1.omega").unwrap_err().to_string();
+    assert!(e.contains("`j1.w`") || e.contains("`j1.phi`"), "{e}");
+    assert!(!e.contains("b1."), "{e}");
+}
+
+#[test]
+fn a_world_under_another_name_is_one_line_that_says_so() {
+    let renamed = system! {
+        name: "pendulum";
+        earth = World::default();
+        j1 = Revolute::default();
+        b1 = BodyShape { m: 1.0, r: [1.0, 0.0, 0.0] };
+        connect(earth.frame_b, j1.frame_a);
+        connect(j1.frame_b, b1.frame_a);
+    };
+    let e = structural_simplify(&renamed).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "model `pendulum` has no instance `world` (MultiBody.World), which its components \
+         refer to by that name; the model has one named `earth`: name it `world`"
+    );
+    let without = system! {
+        name: "pendulum";
+        j1 = Revolute::default();
+        b1 = BodyShape { m: 1.0, r: [1.0, 0.0, 0.0] };
+        connect(j1.frame_b, b1.frame_a);
+    };
+    let e = structural_simplify(&without).unwrap_err().to_string();
+    assert!(e.ends_with(": add one named `world`"), "{e}");
+    assert!(!e.contains('\n') && e.len() < 200, "{e}");
+}
+
+#[test]
+fn plots_take_handles() {
+    let m = oscillator(4.0);
+    let ssys = structural_simplify(&m).unwrap();
+    let sol = DaeProblem::builder(&ssys, (0.0, 1.0))
+        .value(m.inertia.phi, 1.0)
+        .build()
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("typed_plot.png");
+    plot(&sol, &[m.inertia.phi, m.inertia.w], &path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    std::fs::remove_file(&path).ok();
+}
