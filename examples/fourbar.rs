@@ -50,22 +50,20 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&fourbar())?;
+    let model = fourbar();
+    let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("unknowns: {:?}", ssys.unknowns());
-    let problem = DaeProblem::new(&ssys, &[("j1.phi", 0.1)], (0.0, 10.0))?;
-    let options = SolverOptions {
-        output_times: Some((0..=1000).map(|k| k as f64 * 0.01).collect()),
-        ..SolverOptions::default()
-    };
-    let sol = problem.solve(&options)?;
+    let sol = DaeProblem::builder(&ssys, (0.0, 10.0))
+        .value(model.j1.phi, 0.1)
+        .build()?
+        .solve(&SolverOptions::default().with_output_interval(0.0, 10.0, 0.01))?;
     println!("{:?}", sol.statistics());
-    plot_figure(
-        &sol,
-        &[&["j1.phi", "j2.phi", "j3.phi"], &["j1.w", "j2.w", "j3.w"]],
-        "fourbar.png",
-        &PlotOptions::default(),
-    )?;
+    Figure::new()
+        .title("Planar four-bar of the tutorial")
+        .panel(&sol, &[model.j1.phi, model.j2.phi, model.j3.phi])
+        .panel(&sol, &[model.j1.w, model.j2.w, model.j3.w])
+        .save("fourbar.png")?;
     println!("wrote fourbar.png");
     let options = RenderOptions {
         camera: [4.0, -1.0, 4.0],
@@ -74,7 +72,7 @@ fn main() -> Result<(), multibody::Error> {
         times: Some((0..=200).map(|k| 0.05 * k as f64).collect()),
         ..RenderOptions::default()
     };
-    render(&fourbar(), &sol, "fourbar.gif", &options)?;
+    render(&model, &sol, "fourbar.gif", &options)?;
     println!("wrote fourbar.gif");
     Ok(())
 }

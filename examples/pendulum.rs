@@ -25,18 +25,21 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&pendulum())?;
+    let model = pendulum();
+    let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("unknowns: {:?}", ssys.unknowns());
-    let sol = DaeProblem::new(&ssys, &[("rev.phi", 0.0), ("rev.w", 0.0)], (0.0, 5.0))?
+    let sol = DaeProblem::builder(&ssys, (0.0, 5.0))
+        .value(model.rev.phi, 0.0)
+        .value(model.rev.w, 0.0)
+        .build()?
         .solve(&SolverOptions::default())?;
-    println!("rev.phi(5) = {}", sol.final_value("rev.phi")?);
-    plot_figure(
-        &sol,
-        &[&["rev.phi"], &["rev.w"]],
-        "pendulum.png",
-        &PlotOptions::default(),
-    )?;
+    println!("rev.phi(5) = {}", sol.final_value(model.rev.phi)?);
+    Figure::new()
+        .title("MSL Examples.Elementary.Pendulum")
+        .panel(&sol, &[model.rev.phi])
+        .panel(&sol, &[model.rev.w])
+        .save("pendulum.png")?;
     println!("wrote pendulum.png");
     let options = RenderOptions {
         camera: [0.8, 0.3, 1.8],
@@ -44,7 +47,7 @@ fn main() -> Result<(), multibody::Error> {
         times: Some((0..=100).map(|k| 0.05 * k as f64).collect()),
         ..RenderOptions::default()
     };
-    render(&pendulum(), &sol, "pendulum.gif", &options)?;
+    render(&model, &sol, "pendulum.gif", &options)?;
     println!("wrote pendulum.gif");
     Ok(())
 }

@@ -1,43 +1,288 @@
 //! # multibody
 //!
 //! Acausal, equation-based modeling and simulation of multibody systems, with 1-D
-//! mechanics, circuits and control blocks beside them. Components are declared once
-//! with [`component!`] (parameters with defaults and docs, connectors, variables,
-//! equations like `der(phi) = w;`), models are assembled with [`system!`] (or plain
-//! builder calls), reduced by [`structural_simplify`] to states, algebraic unknowns and
-//! residuals with a mass matrix, integrated by SUNDIALS IDA, and read back by name.
+//! mechanics, circuits and control blocks beside them: MSL's MultiBody library, or
+//! Multibody.jl on ModelingToolkit, in Rust.
+//!
+//! A model is a set of components (bodies, joints, springs, motors, controllers) whose
+//! connectors are connected. Each component brings its equations; [`structural_simplify`]
+//! reduces the whole to a few states and residuals, [`DaeProblem`] integrates them with
+//! SUNDIALS IDA, and the [`Solution`] gives back every variable of the model.
+//!
+//! # A tour by task
+//!
+//! ## Declare a component
+//!
+//! [`component!`] declares a component type: parameters (with units and defaults in their
+//! docs), connectors, variables and equations, as in a Modelica model. The library's own
+//! components are declared this way (see [`joints::Revolute`]); its syntax reference lists
+//! every statement form.
 //!
 //! ```
 //! use multibody::prelude::*;
-//! use multibody::rotational::{Damper, Fixed, Inertia, Spring};
+//! use multibody::rotational::Flange;
 //!
-//! let model = system! {
-//!     name: "oscillator";
-//!     fixed = Fixed::default();
-//!     spring = Spring { c: 4.0 };
-//!     damper = Damper { d: 0.4 };
-//!     inertia = Inertia { J: 1.0, phi_start: 1.0 };
-//!     connect(fixed.flange, spring.flange_a);
-//!     connect(spring.flange_b, inertia.flange_a);
-//!     connect(fixed.flange, damper.flange_a);
-//!     connect(damper.flange_b, inertia.flange_a);
-//! };
+//! component! {
+//!     /// A rotational inertia with viscous friction to the ground.
+//!     pub struct LossyInertia {
+//!         /// Moment of inertia [kg.m2], default 1.
+//!         parameter J(min = 0.0): f64 = 1.0;
+//!         /// Viscous friction coefficient [N.m.s/rad], default 0.1.
+//!         parameter d: f64 = 0.1;
+//!         /// The flange the inertia is mounted on.
+//!         connector flange: Flange;
+//!         /// Rotation angle [rad].
+//!         variable phi(start = 1.0): Real;
+//!         /// Angular velocity [rad/s].
+//!         variable w: Real;
+//!         equation {
+//!             phi = flange.phi;
+//!             w = der(phi);
+//!             J * der(w) = flange.tau - d * w;
+//!         }
+//!     }
+//! }
+//! ```
+//!
+//! ## Assemble a model
+//!
+//! [`system!`] names instances and connects them. In its function form it defines a
+//! function returning a [`Model`]: the assembled [`System`] together with a struct of
+//! typed handles, one field per instance, through which variables and parameters are
+//! named (`model.j1.phi`). Misspelt instances, connectors and parameters, and connections
+//! of connectors of different types, are compile errors.
+//!
+//! ```
+//! use multibody::joints::Revolute;
+//! use multibody::parts::BodyShape;
+//! use multibody::prelude::*;
+//! use multibody::world::World;
+//!
+//! system! {
+//!     /// A double pendulum of two rods of length `l` [m].
+//!     pub fn double_pendulum(l: f64) -> DoublePendulum {
+//!         world = World::default();
+//!         j1 = Revolute::default();
+//!         rod1 = BodyShape { r: [l, 0.0, 0.0], m: 1.0 };
+//!         j2 = Revolute::default();
+//!         rod2 = BodyShape { r: [l, 0.0, 0.0], m: 1.0 };
+//!         connect(world.frame_b, j1.frame_a);
+//!         connect(j1.frame_b, rod1.frame_a);
+//!         connect(rod1.frame_b, j2.frame_a);
+//!         connect(j2.frame_b, rod2.frame_a);
+//!     }
+//! }
+//!
+//! let model = double_pendulum(0.5);
+//! assert_eq!(model.j2.phi.name().as_deref(), Some("j2.phi"));
+//! assert_eq!(model.system().name, "double_pendulum");
+//! ```
+//!
+//! What is only known at run time is assembled with builder calls on a [`System`]
+//! ([`System::add`], [`System::connect`] by path), which the macro expands to.
+//!
+//! ```
+//! use multibody::prelude::*;
+//! use multibody::rotational::{Fixed, Inertia, Spring};
+//!
+//! let mut chain = System::new("chain");
+//! chain.add("fixed", &Fixed::default());
+//! let mut previous = "fixed.flange".to_string();
+//! for k in 1..=3 {
+//!     chain.add(&format!("spring{k}"), &Spring { c: 100.0, ..Spring::default() });
+//!     chain.add(&format!("inertia{k}"), &Inertia::default());
+//!     chain.connect(&previous, &format!("spring{k}.flange_a"));
+//!     chain.connect(&format!("spring{k}.flange_b"), &format!("inertia{k}.flange_a"));
+//!     previous = format!("inertia{k}.flange_b");
+//! }
+//! let ssys = structural_simplify(&chain)?;
+//! assert_eq!(ssys.states().len(), 6);
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
+//! ## Simplify
+//!
+//! [`structural_simplify`] flattens the model, eliminates aliases, reduces the index
+//! (Pantelides), selects states (MSL's priorities; dynamic state selection where a
+//! static choice degrades), sorts and tears the equations and compiles the residual.
+//! The [`SimplifiedSystem`] tells what came out: states, algebraic unknowns, the
+//! equations, and a Dymola-style translation report ([`SimplifiedSystem::statistics`]).
+//! [`structural_simplify_with`] takes [`SimplifyOptions`]. A structurally singular model
+//! is an error that names the equations and variables involved.
+//!
+//! ```
+//! # use multibody::prelude::*;
+//! # use multibody::rotational::{Fixed, Inertia, Spring};
+//! # system! {
+//! #     fn oscillator() -> Oscillator {
+//! #         fixed = Fixed::default();
+//! #         spring = Spring { c: 4.0 };
+//! #         inertia = Inertia { phi_start: 1.0 };
+//! #         connect(fixed.flange, spring.flange_a);
+//! #         connect(spring.flange_b, inertia.flange_a);
+//! #     }
+//! # }
+//! let model = oscillator();
 //! let ssys = structural_simplify(&model)?;
-//! // MSL's damper prefers its relative angle and speed as states.
-//! assert_eq!(ssys.states(), ["damper.phi_rel", "damper.w_rel"]);
-//! let sol = DaeProblem::new(&ssys, &[], (0.0, 10.0))?.solve(&SolverOptions::default())?;
-//! // The damped oscillation from 1 rad at rest, in closed form:
-//! // phi = exp(-delta t) (cos(wd t) + delta / wd sin(wd t)),
-//! // delta = d / (2 J) = 0.2, wd = sqrt(c / J - delta^2).
-//! let (delta, wd) = (0.2, (4.0f64 - 0.04).sqrt());
-//! let phi = sol.get("inertia.phi")?;
-//! for (t, p) in sol.t().iter().zip(&phi) {
-//!     let exact = (-delta * t).exp() * ((wd * t).cos() + delta / wd * (wd * t).sin());
-//!     // The default rtol is 1e-6: over three periods the error stays near 2e-6.
-//!     assert!((p - exact).abs() < 1e-5, "phi({t}) = {p}, exact {exact}");
+//! assert_eq!(ssys.states(), ["inertia.phi", "inertia.w"]);
+//! println!("{}", ssys.statistics());
+//! for equation in ssys.equations() {
+//!     println!("{equation}");
 //! }
 //! # Ok::<(), multibody::Error>(())
 //! ```
+//!
+//! ## Solve
+//!
+//! A [`DaeProblem`] sets start values, parameter values and guesses (by handle or by
+//! name) over a time span; [`DaeProblem::solve`] initializes the model consistently
+//! and integrates it with the [`SolverOptions`] (tolerances, output times, step limits).
+//! Other parameter values need a new problem, not a new compilation.
+//!
+//! ```
+//! # use multibody::prelude::*;
+//! # use multibody::rotational::{Fixed, Inertia, Spring};
+//! # system! {
+//! #     fn oscillator() -> Oscillator {
+//! #         fixed = Fixed::default();
+//! #         spring = Spring { c: 4.0 };
+//! #         inertia = Inertia { phi_start: 1.0 };
+//! #         connect(fixed.flange, spring.flange_a);
+//! #         connect(spring.flange_b, inertia.flange_a);
+//! #     }
+//! # }
+//! # let model = oscillator();
+//! # let ssys = structural_simplify(&model)?;
+//! let sol = DaeProblem::builder(&ssys, (0.0, 2.0))
+//!     .value(model.inertia.phi, 0.5) // a start value
+//!     .value(model.spring.c, 9.0) // a parameter
+//!     .build()?
+//!     .solve(&SolverOptions { rtol: 1e-8, ..SolverOptions::default() })?;
+//! // phi = 0.5 cos(3 t)
+//! assert!((sol.final_value(model.inertia.phi)? - 0.5 * 6.0f64.cos()).abs() < 1e-6);
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
+//! ## Read results
+//!
+//! Every variable of the model can be read from the [`Solution`], not only the states:
+//! [`Solution::get`] (the series at [`Solution::t`]), [`Solution::at`] (interpolated),
+//! [`Solution::sample`], [`Solution::final_value`], derivatives as `"der(x)"`, parameter
+//! values ([`Solution::parameter`]), declared units ([`Solution::unit`]), and CSV
+//! ([`Solution::write_csv`], [`Solution::write_csv_all`]). A name that does not exist is
+//! an error suggesting the closest ones.
+//!
+//! ```
+//! # use multibody::prelude::*;
+//! # use multibody::rotational::{Fixed, Inertia, Spring};
+//! # system! {
+//! #     fn oscillator() -> Oscillator {
+//! #         fixed = Fixed::default();
+//! #         spring = Spring { c: 4.0 };
+//! #         inertia = Inertia { phi_start: 1.0 };
+//! #         connect(fixed.flange, spring.flange_a);
+//! #         connect(spring.flange_b, inertia.flange_a);
+//! #     }
+//! # }
+//! # let model = oscillator();
+//! # let ssys = structural_simplify(&model)?;
+//! # let sol = DaeProblem::builder(&ssys, (0.0, 2.0)).build()?.solve(&SolverOptions::default())?;
+//! let torque = sol.get(model.spring.tau)?; // a handle
+//! let angle = sol.get("inertia.phi")?; // or a path
+//! assert!((torque[0] - 4.0 * angle[0]).abs() < 1e-9); // tau = c phi
+//! let accel = sol.at("der(inertia.w)", 1.0)?;
+//! assert!((accel + 4.0 * sol.at(model.inertia.phi, 1.0)?).abs() < 1e-5);
+//! assert_eq!(sol.unit(model.inertia.w).as_deref(), Some("rad/s"));
+//! assert!(sol.get("inertia.omega").unwrap_err().to_string().contains("inertia.w"));
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
+//! ## Plot
+//!
+//! [`plot()`] draws variables against time into a PNG; [`Figure`] arranges panels, titles
+//! and overlays of several solutions (what `plot!` does in Julia). The y axes are
+//! labelled with the variables' declared units.
+//!
+//! ```no_run
+//! # use multibody::prelude::*;
+//! # use multibody::rotational::{Fixed, Inertia, Spring};
+//! # system! {
+//! #     fn oscillator() -> Oscillator {
+//! #         fixed = Fixed::default();
+//! #         spring = Spring { c: 4.0 };
+//! #         inertia = Inertia { phi_start: 1.0 };
+//! #         connect(fixed.flange, spring.flange_a);
+//! #         connect(spring.flange_b, inertia.flange_a);
+//! #     }
+//! # }
+//! # let model = oscillator();
+//! # let ssys = structural_simplify(&model)?;
+//! let soft = DaeProblem::builder(&ssys, (0.0, 5.0)).build()?.solve(&SolverOptions::default())?;
+//! let stiff = DaeProblem::builder(&ssys, (0.0, 5.0))
+//!     .value(model.spring.c, 16.0)
+//!     .build()?
+//!     .solve(&SolverOptions::default())?;
+//! plot(&soft, &[model.inertia.phi, model.inertia.w], "oscillator.png")?;
+//! Figure::new()
+//!     .title("Two springs")
+//!     .overlay(&soft, &[model.inertia.phi], "c = 4")
+//!     .overlay(&stiff, &[model.inertia.phi], "c = 16")
+//!     .save("springs.png")?;
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
+//! ## Animate
+//!
+//! [`render`](render::render) draws a 3-D mechanism at chosen times into an animated GIF
+//! (bodies by their shapes, joints, springs, world axes, a ground grid) from the solution
+//! alone; [`render_frame`](render::render_frame) writes one PNG. See
+//! [`RenderOptions`](render::RenderOptions) for the camera.
+//!
+//! ```no_run
+//! # use multibody::joints::Revolute;
+//! # use multibody::parts::BodyShape;
+//! # use multibody::prelude::*;
+//! # use multibody::world::World;
+//! # system! {
+//! #     fn pendulum() -> Pendulum {
+//! #         world = World::default();
+//! #         j1 = Revolute::default();
+//! #         rod = BodyShape { r: [0.5, 0.0, 0.0] };
+//! #         connect(world.frame_b, j1.frame_a);
+//! #         connect(j1.frame_b, rod.frame_a);
+//! #     }
+//! # }
+//! let model = pendulum();
+//! let ssys = structural_simplify(&model)?;
+//! let sol = DaeProblem::builder(&ssys, (0.0, 3.0)).build()?.solve(&SolverOptions::default())?;
+//! let options = RenderOptions {
+//!     camera: [0.5, 0.2, 2.0],
+//!     look_at: [0.0, -0.25, 0.0],
+//!     times: Some((0..=60).map(|k| 0.05 * k as f64).collect()),
+//!     ..RenderOptions::default()
+//! };
+//! render(&model, &sol, "pendulum.gif", &options)?;
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
+//! ## Errors
+//!
+//! Every fallible call returns [`Error`] (or one of the stage errors in [`error`] it
+//! wraps). Messages name the component and variable by full path: a parameter outside
+//! its range, a zero joint axis, a structurally singular model, an initialization that
+//! does not converge, a value that became NaN during the solve. Library code never
+//! prints; diagnostics go to the [`log`](https://docs.rs/log) crate.
+//!
+//! # Where the components are
+//!
+//! | module | MSL package |
+//! |---|---|
+//! | [`world`], [`parts`], [`joints`], [`forces`], [`sensors`], [`frames`], [`interfaces`] | `Mechanics.MultiBody` |
+//! | [`rotational`] | `Mechanics.Rotational` |
+//! | [`translational`] | `Mechanics.Translational` |
+//! | [`electrical`] | `Electrical.Analog` |
+//! | [`blocks`] | `Blocks` |
+//! | [`loops`] | planar-loop diagnosis for [`SimplifyOptions::planar_loops`] |
 
 extern crate self as multibody;
 
@@ -73,7 +318,17 @@ pub use multibody_core::solve::{
     DaeProblem, IdaStats, InitReport, LinearSolverChoice, ProblemBuilder, Segment, Solution,
     SolverOptions,
 };
-pub use multibody_macros::{component, connector, system};
+#[doc = include_str!("../docs/macros/component.md")]
+pub use multibody_macros::component;
+#[doc = include_str!("../docs/macros/connector.md")]
+pub use multibody_macros::connector;
+#[doc = include_str!("../docs/macros/system.md")]
+pub use multibody_macros::system;
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 pub use plot::{Figure, PlotOptions, plot, plot_figure};
 
 /// Plots of solutions: variables against time by name or handle, with their units, in

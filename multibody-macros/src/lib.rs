@@ -4,20 +4,19 @@
 
 use proc_macro::TokenStream;
 
-/// Declares a component type: parameters, connectors, variables, sub-components and
-/// equations. See `multibody::component!`.
+/// The macro is parsed, checked and expanded by `multibody-dsl`.
 #[proc_macro]
 pub fn component(input: TokenStream) -> TokenStream {
     multibody_dsl::component(input.into()).into()
 }
 
-/// Declares a connector type. See `multibody::connector!`.
+/// The macro is parsed, checked and expanded by `multibody-dsl`.
 #[proc_macro]
 pub fn connector(input: TokenStream) -> TokenStream {
     multibody_dsl::connector(input.into()).into()
 }
 
-/// Builds a model of named instances and connections. See `multibody::system!`.
+/// The macro is parsed, checked and expanded by `multibody-dsl`.
 #[proc_macro]
 pub fn system(input: TokenStream) -> TokenStream {
     multibody_dsl::system(input.into()).into()

@@ -7,16 +7,10 @@
 //! value: constants fold, `x * 0` and `x + 0` vanish with everything only they used, and
 //! the entries of a sparse linear solve that became zero leave its pattern (fewer
 //! refactorization multiply-adds), and its unknowns whose pivots became constants are
-//! eliminated (`specialize_solve.rs`). On the 100-link pendulum with tunable parameters
-//! this takes the residual tape from 14 148 to 6 250 instructions and the acceleration
-//! block from 389 unknowns and 9 074 refactorization multiply-adds to 357 and 3 671.
-//! Compile-time pre-elimination orders its eliminations for this (entries that vanish
-//! at the default values do not count as fill), at a price for the general tape: it
-//! was 11 689 instructions and 10 888 multiply-adds before, and specialized to 6 509
-//! and 5 902. The specialized solve is now within about 10 % of a model compiled with
-//! the values folded in (`SimplifyOptions::evaluate_parameters`), while a new problem
-//! with other values only needs a new specialization (milliseconds), not a new
-//! compilation.
+//! eliminated (`specialize_solve.rs`). Compile-time pre-elimination orders its
+//! eliminations for this (entries that vanish at the default values do not count as
+//! fill). A problem with other values needs a new specialization, not a new
+//! compilation. What this saves is measured in `docs/benchmarks.md`.
 //!
 //! Values and derivatives are those of the original tape at the same parameter values,
 //! up to rounding and with the exceptions the tape compiler's folding always makes (as

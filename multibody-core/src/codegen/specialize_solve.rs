@@ -8,15 +8,8 @@
 //! in Markowitz order, on constant pivots that are not small next to the other
 //! constants of their column, and only where that creates no new entry ([`MAX_FILL`]).
 //! The eliminated unknowns are computed after the reduced solve by back substitution.
-//!
-//! On the 100-link pendulum with tunable parameters this shrinks the acceleration block
-//! from 389 to 357 unknowns (391 to 358 and the solve by 7 % when first measured, and
-//! by 3 to 15 % with the parameters folded at compile time). Allowing fill (2 or 8
-//! entries) shrank the block further but made the solve slower: the extra instructions
-//! and a denser iteration matrix cost more than the smaller factorization saved. With 4,
-//! after compile-time pre-elimination learned to order by the defaults, the 20-link
-//! chain solved 4 % slower and the 100-link one 5 % faster (iteration matrix 9 299 factor
-//! entries against 8 740): not a clear gain.
+//! Fill is not allowed: the extra instructions and a denser iteration matrix cost more
+//! than the smaller factorization saves (measured in `docs/benchmarks.md`).
 
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BTreeSet, BinaryHeap};

@@ -2,7 +2,7 @@
 //!
 //! Sorting a linear block needs the coefficient of every block unknown in every
 //! equation. Differentiating once per unknown walks (and rebuilds) the whole equation
-//! each time; on the 500-link pendulum that was a fifth of the translation. One walk
+//! each time. One walk
 //! that splits each node into `rest + sum(coefficient * unknown)` keeps the subtrees
 //! free of unknowns as they are and builds only what the unknowns touch.
 
