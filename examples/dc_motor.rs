@@ -52,26 +52,24 @@ fn main() -> Result<(), multibody::Error> {
     let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("states: {:?}", ssys.states());
-    let prob = DaeProblem::new(&ssys, &[], (0.0, 3.0))?;
-    let sol = prob.solve(&SolverOptions::default())?;
+    let sol = DaeProblem::builder(&ssys, (0.0, 3.0))
+        .build()?
+        .solve(&SolverOptions::default())?;
     println!(
         "load speed at 3 s: {:.6} rad/s (reference 1), {} steps",
-        sol.final_value("load_inertia.w")?,
+        sol.final_value(model.load_inertia.w)?,
         sol.statistics().steps
     );
-    plot_figure(
-        &sol,
-        &[
-            &["reference.y", "load_inertia.w"],
-            &["controller.y"],
-            &["inductor.i"],
-        ],
-        "dc_motor.png",
-        &PlotOptions {
+    Figure::new()
+        .title("DC motor with a PI speed controller")
+        .panel(&sol, &[model.reference.y.into(), model.load_inertia.w])
+        .panel(&sol, &[model.controller.y])
+        .panel(&sol, &[model.inductor.i])
+        .options(PlotOptions {
             columns: 3,
             ..PlotOptions::default()
-        },
-    )?;
+        })
+        .save("dc_motor.png")?;
     println!("wrote dc_motor.png");
     Ok(())
 }

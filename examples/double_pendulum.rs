@@ -30,24 +30,19 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&double_pendulum())?;
+    let m = double_pendulum();
+    let ssys = structural_simplify(&m)?;
     println!("{}", ssys.statistics());
-    let start = [
-        ("revolute1.phi", 0.0),
-        ("revolute1.w", 0.0),
-        ("revolute2.phi", 0.0),
-        ("revolute2.w", 0.0),
-    ];
-    let sol = DaeProblem::new(&ssys, &start, (0.0, 3.0))?.solve(&SolverOptions::default())?;
-    plot_figure(
-        &sol,
-        &[
-            &["revolute1.phi", "revolute2.phi"],
-            &["revolute1.w", "revolute2.w"],
-        ],
-        "double_pendulum.png",
-        &PlotOptions::default(),
-    )?;
+    let (r1, r2) = (m.revolute1, m.revolute2);
+    let sol = DaeProblem::builder(&ssys, (0.0, 3.0))
+        .values(&[(r1.phi, 0.0), (r1.w, 0.0), (r2.phi, 0.0), (r2.w, 0.0)])
+        .build()?
+        .solve(&SolverOptions::default())?;
+    Figure::new()
+        .title("MSL Examples.Elementary.DoublePendulum")
+        .panel(&sol, &[r1.phi, r2.phi])
+        .panel(&sol, &[r1.w, r2.w])
+        .save("double_pendulum.png")?;
     println!("wrote double_pendulum.png");
     let options = RenderOptions {
         camera: [1.2, 0.3, 3.0],
@@ -55,7 +50,7 @@ fn main() -> Result<(), multibody::Error> {
         times: Some((0..=150).map(|k| 0.02 * k as f64).collect()),
         ..RenderOptions::default()
     };
-    render(&double_pendulum(), &sol, "double_pendulum.gif", &options)?;
+    render(&m, &sol, "double_pendulum.gif", &options)?;
     println!("wrote double_pendulum.gif");
     Ok(())
 }

@@ -33,14 +33,15 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&fourbar_analytic())?;
+    let model = fourbar_analytic();
+    let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("unknowns: {:?}", ssys.unknowns());
     println!("mass matrix diagonal: {:?}", ssys.mass_matrix_diagonal());
     let sol = DaeProblem::new(&ssys, &[], (0.0, 1.4399))?
         .solve(&SolverOptions::default().with_output_interval(0.0, 1.4399, 0.0025))?;
     println!("{:?}", sol.statistics());
-    plot(&sol, &["j2.s"], "fourbar_analytic.png")?;
+    plot(&sol, &[model.j2.s], "fourbar_analytic.png")?;
     println!("wrote fourbar_analytic.png");
     let options = RenderOptions {
         camera: [2.2, 1.2, 2.2],
@@ -48,7 +49,7 @@ fn main() -> Result<(), multibody::Error> {
         times: Some((0..=143).map(|k| 0.01 * k as f64).collect()),
         ..RenderOptions::default()
     };
-    render(&fourbar_analytic(), &sol, "fourbar_analytic.gif", &options)?;
+    render(&model, &sol, "fourbar_analytic.gif", &options)?;
     println!("wrote fourbar_analytic.gif");
     Ok(())
 }

@@ -49,13 +49,14 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&fourbar_cutjoint())?;
+    let model = fourbar_cutjoint();
+    let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("unknowns: {:?}", ssys.unknowns());
     let sol = DaeProblem::new(&ssys, &[], (0.0, 1.4399))?
         .solve(&SolverOptions::default().with_output_interval(0.0, 1.4399, 0.0025))?;
     println!("{:?}", sol.statistics());
-    plot(&sol, &["j2.s"], "fourbar_cutjoint.png")?;
+    plot(&sol, &[model.j2.s], "fourbar_cutjoint.png")?;
     println!("wrote fourbar_cutjoint.png");
     let options = RenderOptions {
         camera: [2.2, 1.2, 2.2],
@@ -63,7 +64,7 @@ fn main() -> Result<(), multibody::Error> {
         times: Some((0..=143).map(|k| 0.01 * k as f64).collect()),
         ..RenderOptions::default()
     };
-    render(&fourbar_cutjoint(), &sol, "fourbar_cutjoint.gif", &options)?;
+    render(&model, &sol, "fourbar_cutjoint.gif", &options)?;
     println!("wrote fourbar_cutjoint.gif");
     Ok(())
 }

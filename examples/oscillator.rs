@@ -25,6 +25,10 @@ fn main() -> Result<(), multibody::Error> {
     println!("init: {:?}", prob.init_report());
     let sol = prob.solve(&SolverOptions::default())?;
     println!("{:?}", sol.statistics());
-    plot(&sol, &["inertia.phi", "inertia.w"], "oscillator.png")?;
+    plot(
+        &sol,
+        &[model.inertia.phi, model.inertia.w],
+        "oscillator.png",
+    )?;
     Ok(())
 }

@@ -21,29 +21,26 @@ system! {
 }
 
 fn main() -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&spherical_pendulum())?;
+    let model = spherical_pendulum();
+    let ssys = structural_simplify(&model)?;
     println!("{}", ssys.statistics());
     println!("states: {:?}", ssys.states());
-    let start = [
-        ("joint.phi[1]", 0.5),
-        ("joint.phi[2]", 0.0),
-        ("joint.phi[3]", -0.3),
-        ("joint.phi_d[1]", 1.0),
-    ];
-    let sol = DaeProblem::new(&ssys, &start, (0.0, 5.0))?.solve(&SolverOptions::default())?;
-    plot_figure(
-        &sol,
-        &[
-            &[
-                "link.frame_b.r_0[1]",
-                "link.frame_b.r_0[2]",
-                "link.frame_b.r_0[3]",
-            ],
-            &["joint.phi[1]", "joint.phi[2]", "joint.phi[3]"],
-        ],
-        "spherical_pendulum.png",
-        &PlotOptions::default(),
-    )?;
+    // Handles of vectors index from 0: `joint.phi[0]` is the variable `joint.phi[1]`.
+    let (phi, phi_d) = (model.joint.phi, model.joint.phi_d);
+    let sol = DaeProblem::builder(&ssys, (0.0, 5.0))
+        .values(&[
+            (phi[0], 0.5),
+            (phi[1], 0.0),
+            (phi[2], -0.3),
+            (phi_d[0], 1.0),
+        ])
+        .build()?
+        .solve(&SolverOptions::default())?;
+    Figure::new()
+        .title("Spherical pendulum")
+        .panel(&sol, &model.link.frame_b.r_0.to_array())
+        .panel(&sol, &phi.to_array())
+        .save("spherical_pendulum.png")?;
     println!("wrote spherical_pendulum.png");
     Ok(())
 }

@@ -217,5 +217,41 @@ fn plots_take_handles() {
     plot(&sol, &[m.inertia.phi, m.inertia.w], &path).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(&bytes[1..4], b"PNG");
+    let plain_height = png_height(&bytes);
+    // A figure title given before the panels and kept through `options`: a band over
+    // the panels makes the image taller.
+    Figure::new()
+        .title("Oscillator")
+        .panel(&sol, &[m.inertia.phi])
+        .panel(&sol, &[m.inertia.w])
+        .options(PlotOptions {
+            columns: 2,
+            ..PlotOptions::default()
+        })
+        .save(&path)
+        .unwrap();
+    let titled = std::fs::read(&path).unwrap();
+    assert!(
+        png_height(&titled) > plain_height / 2,
+        "two panels side by side"
+    );
+    let untitled = path.with_file_name("typed_plot_untitled.png");
+    Figure::new()
+        .panel(&sol, &[m.inertia.phi])
+        .panel(&sol, &[m.inertia.w])
+        .options(PlotOptions {
+            columns: 2,
+            ..PlotOptions::default()
+        })
+        .save(&untitled)
+        .unwrap();
+    let untitled_bytes = std::fs::read(&untitled).unwrap();
+    assert!(png_height(&titled) > png_height(&untitled_bytes));
     std::fs::remove_file(&path).ok();
+    std::fs::remove_file(&untitled).ok();
+}
+
+/// The height of a PNG image, from its IHDR chunk.
+fn png_height(bytes: &[u8]) -> u32 {
+    u32::from_be_bytes(bytes[20..24].try_into().unwrap())
 }

@@ -61,6 +61,7 @@ pub struct Figure {
     /// Per panel, the unit of each series (for the axis label).
     units: Vec<Vec<Option<String>>>,
     options: PlotOptions,
+    title: Option<String>,
     error: Option<Error>,
 }
 
@@ -97,8 +98,15 @@ impl Figure {
         self
     }
 
-    /// The title of the last panel.
+    /// The figure's title, in a band over all panels (kept when [`Figure::options`] is
+    /// called later).
     pub fn title(mut self, title: impl Into<String>) -> Self {
+        self.title = Some(title.into());
+        self
+    }
+
+    /// The title of the last panel (drawn over it).
+    pub fn panel_title(mut self, title: impl Into<String>) -> Self {
         if let Some(p) = self.panels.last_mut() {
             p.title = Some(title.into());
         }
@@ -131,7 +139,10 @@ impl Figure {
 
     /// Draws the figure into a PNG at `path`.
     pub fn save(self, path: impl AsRef<Path>) -> Result<(), Error> {
-        let options = self.options.clone();
+        let mut options = self.options.clone();
+        if self.title.is_some() {
+            options.title.clone_from(&self.title);
+        }
         let panels = self.into_panels()?;
         plot_panels(&panels, path.as_ref(), &options)?;
         Ok(())
