@@ -30,12 +30,12 @@
 
 use std::time::Instant;
 
-use multibody::LinearSolverChoice;
+use multibody::LinearSolver;
 use multibody::PhaseTimes;
 use multibody::prelude::*;
 use multibody::rotational::{Fixed, Inertia, SpringDamper};
 use multibody_core::solve::ida::{
-    self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode,
+    self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode,
 };
 
 /// Rounds of compilation (and initialization) of every size; the fastest counts.
@@ -205,15 +205,15 @@ impl DaeFunctions for Baseline {
     }
 }
 
-fn baseline(n: usize, linear_solver: LinearSolver) -> (f64, u64, f64) {
-    let (t, stats, last) = baseline_stats(n, linear_solver);
+fn baseline(n: usize, matrix: IdaMatrix) -> (f64, u64, f64) {
+    let (t, stats, last) = baseline_stats(n, matrix);
     if std::env::var("BENCH_STATS").is_ok() {
         eprintln!("baseline {stats:?}");
     }
     (t, stats.steps, last)
 }
 
-fn baseline_stats(n: usize, linear_solver: LinearSolver) -> (f64, ida::IdaStats, f64) {
+fn baseline_stats(n: usize, matrix: IdaMatrix) -> (f64, ida::IdaStats, f64) {
     let mut f = Baseline { n };
     let mut y0 = vec![0.0; 2 * n];
     y0[n - 1] = 1.0;
@@ -225,7 +225,7 @@ fn baseline_stats(n: usize, linear_solver: LinearSolver) -> (f64, ida::IdaStats,
     let settings = IdaSettings {
         rtol: RTOL,
         atol: ATOL,
-        linear_solver,
+        matrix,
         id: vec![1.0; 2 * n],
         ..IdaSettings::default()
     };
@@ -424,9 +424,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let ssys = structural_simplify(&chain(n))?;
         let prob = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
         let choice = if ssys.unknowns().len() <= 24 {
-            LinearSolverChoice::Dense
+            LinearSolver::Dense
         } else {
-            LinearSolverChoice::Sparse
+            LinearSolver::Sparse
         };
         let opts = SolverOptions {
             rtol: RTOL,
@@ -434,10 +434,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             linear_solver: choice,
             ..SolverOptions::default()
         };
-        let linear = if choice == LinearSolverChoice::Dense {
-            LinearSolver::Dense
+        let linear = if choice == LinearSolver::Dense {
+            IdaMatrix::Dense
         } else {
-            LinearSolver::SparseLu
+            IdaMatrix::SparseLu
         };
         let only_ours = std::env::var("BENCH_ONLY_OURS").is_ok();
         // Solves, ours and the baseline's, alternate; the fastest of each counts.

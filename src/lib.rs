@@ -315,7 +315,7 @@ pub use multibody_core::simplify::{
     Statistics,
 };
 pub use multibody_core::solve::{
-    DaeProblem, IdaStats, InitReport, LinearSolverChoice, ProblemBuilder, Segment, Solution,
+    DaeProblem, IdaStats, InitReport, LinearSolver, ProblemBuilder, Segment, Solution,
     SolverOptions,
 };
 #[doc = include_str!("../docs/macros/component.md")]

@@ -9,7 +9,7 @@ use multibody::joints::Revolute;
 use multibody::parts::BodyShape;
 use multibody::prelude::*;
 use multibody::world::World;
-use multibody::{LinearSolverChoice, SimplifyOptions, structural_simplify_with};
+use multibody::{LinearSolver, SimplifyOptions, structural_simplify_with};
 
 const G: f64 = 9.80665;
 const I_ZZ: f64 = 0.001;
@@ -277,7 +277,7 @@ fn jacobians_are_analysed_on_first_use_only() {
     // A solver that never uses the extended Jacobian never analyses it.
     let ssys = structural_simplify(&chain(20, 0.5)).unwrap();
     let problem = DaeProblem::new(&ssys, &[("rev2.phi", 0.3)], (0.0, 0.05)).unwrap();
-    for linear_solver in [LinearSolverChoice::SparsePlain, LinearSolverChoice::Dense] {
+    for linear_solver in [LinearSolver::SparsePlain, LinearSolver::Dense] {
         problem
             .solve(&SolverOptions {
                 specialize_parameters: false,

@@ -39,8 +39,8 @@ use multibody::joints::Revolute;
 use multibody::parts::BodyShape;
 use multibody::prelude::*;
 use multibody::world::World;
-use multibody::{LinearSolverChoice, SimplifyOptions, structural_simplify_with};
-use multibody_core::solve::ida::{self, IdaSettings, LinearSolver, OutputMode};
+use multibody::{LinearSolver, SimplifyOptions, structural_simplify_with};
+use multibody_core::solve::ida::{self, IdaMatrix, IdaSettings, OutputMode};
 
 const T_END: f64 = 10.0;
 const RTOL: f64 = 1e-6;
@@ -117,7 +117,7 @@ fn baseline(n: usize) -> (f64, u64, f64) {
     let settings = IdaSettings {
         rtol: RTOL,
         atol: ATOL,
-        linear_solver: LinearSolver::DenseDifferenceQuotient,
+        matrix: IdaMatrix::DenseDifferenceQuotient,
         id: vec![1.0; 2 * n],
         ..IdaSettings::default()
     };
@@ -229,11 +229,11 @@ fn main() -> Result<(), multibody::Error> {
         rtol: RTOL,
         atol: ATOL,
         linear_solver: match std::env::var("BENCH_LINEAR_SOLVER").as_deref() {
-            Ok("dense") => LinearSolverChoice::Dense,
-            Ok("sparse") => LinearSolverChoice::Sparse,
-            Ok("plain") => LinearSolverChoice::SparsePlain,
-            Ok("dq") => LinearSolverChoice::DenseDifferenceQuotient,
-            _ => LinearSolverChoice::Auto,
+            Ok("dense") => LinearSolver::Dense,
+            Ok("sparse") => LinearSolver::Sparse,
+            Ok("plain") => LinearSolver::SparsePlain,
+            Ok("dq") => LinearSolver::DenseDifferenceQuotient,
+            _ => LinearSolver::Auto,
         },
         ..SolverOptions::default()
     };

@@ -1,73 +1,15 @@
-//! Fast hashing for the compiler's maps: keys are small integers, expression nodes and
-//! names, never chosen by an adversary, so a multiplicative hash (FxHash-like) is safe
-//! and several times faster than SipHash.
+//! Hashing for the compiler's maps: keys are small integers, expression nodes and
+//! names, never chosen by an adversary, so rustc's Fx hash (`rustc-hash`) is safe and
+//! several times faster than SipHash; and the placement of interned items by locality
+//! ([`anchored_hash`]).
 
-use std::hash::{BuildHasherDefault, Hasher};
+/// The [`BuildHasher`](std::hash::BuildHasher) of the maps below.
+pub type FastBuild = rustc_hash::FxBuildHasher;
 
-/// A fast multiplicative hasher.
-#[derive(Default, Clone, Copy)]
-pub struct FastHasher(u64);
-
-const SEED: u64 = 0x51_7c_c1_b7_27_22_0a_95;
-
-impl FastHasher {
-    #[inline]
-    fn add(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(SEED);
-    }
-}
-
-impl Hasher for FastHasher {
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        let mut chunks = bytes.chunks_exact(8);
-        for c in &mut chunks {
-            self.add(u64::from_le_bytes(c.try_into().expect("8 bytes")));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut buf = [0u8; 8];
-            buf[..rest.len()].copy_from_slice(rest);
-            self.add(u64::from_le_bytes(buf) ^ ((rest.len() as u64) << 56));
-        }
-    }
-    #[inline]
-    fn write_u8(&mut self, i: u8) {
-        self.add(u64::from(i));
-    }
-    #[inline]
-    fn write_u32(&mut self, i: u32) {
-        self.add(u64::from(i));
-    }
-    #[inline]
-    fn write_i32(&mut self, i: i32) {
-        self.add(u64::from(i as u32));
-    }
-    #[inline]
-    fn write_u64(&mut self, i: u64) {
-        self.add(i);
-    }
-    #[inline]
-    fn write_usize(&mut self, i: usize) {
-        self.add(i as u64);
-    }
-    #[inline]
-    fn write_isize(&mut self, i: isize) {
-        self.add(i as u64);
-    }
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-/// The [`BuildHasher`](std::hash::BuildHasher) of [`FastHasher`].
-pub type FastBuild = BuildHasherDefault<FastHasher>;
-
-/// A hash map with [`FastHasher`] (build with `HashMap::default()`).
+/// A hash map with the Fx hash (build with `HashMap::default()`).
 pub type HashMap<K, V> = std::collections::HashMap<K, V, FastBuild>;
 
-/// A hash set with [`FastHasher`] (build with `HashSet::default()`).
+/// A hash set with the Fx hash (build with `HashSet::default()`).
 pub type HashSet<K> = std::collections::HashSet<K, FastBuild>;
 
 /// A hash for a `hashbrown` table of items built from other items (expression nodes

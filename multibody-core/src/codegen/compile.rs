@@ -2,7 +2,7 @@
 //! shared (per arena node and per instruction), statements, outputs and dead-code
 //! elimination.
 
-use crate::expr::{Arena, Id, Node, is_leaf};
+use crate::expr::{Arena, DenseU32, Id, Node, is_leaf};
 
 use super::tape::{LsInfo, Op, SparsePattern, Tape};
 
@@ -27,16 +27,14 @@ fn hash_op(op: &Op) -> u64 {
 /// Tags a value of `TapeBuilder::bound` as an input slot not emitted yet.
 const PENDING: u32 = 1 << 31;
 
-/// A hash map with the fast hasher.
-pub(crate) type FastMap<K, V> = crate::hash::HashMap<K, V>;
-
 /// A map from arena ids to registers, stored densely by id (the arena is fixed while a
-/// builder exists): no hashing on the builder's most frequent lookups.
+/// builder exists): no hashing on the builder's most frequent lookups. It remembers
+/// which ids it holds, so clearing it costs what was inserted, not the arena's size.
 #[derive(Clone, Debug)]
 struct IdMap {
-    values: Vec<u32>,
+    values: DenseU32,
     /// Ids with a value, for `clear`.
-    set: Vec<u32>,
+    set: Vec<Id>,
 }
 
 impl IdMap {
@@ -44,33 +42,26 @@ impl IdMap {
 
     fn new(len: usize) -> Self {
         IdMap {
-            values: vec![Self::NONE; len],
+            values: DenseU32::with_len(len),
             set: Vec::new(),
         }
     }
 
     #[inline]
     fn get(&self, id: Id) -> Option<u32> {
-        match self.values.get(id.index()) {
-            Some(&v) if v != Self::NONE => Some(v),
-            _ => None,
-        }
+        self.values.get(id)
     }
 
     fn insert(&mut self, id: Id, v: u32) {
-        let i = id.index();
-        if i >= self.values.len() {
-            self.values.resize(i + 1, Self::NONE);
+        if self.values.get(id).is_none() {
+            self.set.push(id);
         }
-        if self.values[i] == Self::NONE {
-            self.set.push(i as u32);
-        }
-        self.values[i] = v;
+        self.values.insert(id, v);
     }
 
     fn clear(&mut self) {
-        for &i in &self.set {
-            self.values[i as usize] = Self::NONE;
+        for &id in &self.set {
+            self.values.remove(id);
         }
         self.set.clear();
     }
@@ -90,7 +81,7 @@ pub struct TapeBuilder<'a> {
     n_inputs: usize,
     ops: Vec<Op>,
     consts: Vec<f64>,
-    const_index: FastMap<u64, u32>,
+    const_index: crate::hash::HashMap<u64, u32>,
     /// Registers of the emitted instructions, placed by `hash_op` (value numbering);
     /// 4 bytes per entry, the instruction itself is read from `ops`. Inputs and
     /// constants are numbered densely instead (`input_regs`, `const_regs`).
@@ -122,7 +113,7 @@ impl<'a> TapeBuilder<'a> {
             n_inputs,
             ops: Vec::new(),
             consts: Vec::new(),
-            const_index: FastMap::default(),
+            const_index: crate::hash::HashMap::default(),
             numbering: HashTable::new(),
             input_regs: vec![IdMap::NONE; n_inputs],
             const_regs: Vec::new(),
@@ -174,7 +165,7 @@ impl<'a> TapeBuilder<'a> {
     /// if the dimensions of a linear solve disagree.
     pub fn stmt(&mut self, s: &Stmt) -> Result<(), CodegenError> {
         match s {
-            Stmt::Assign { target, expr } => {
+            Stmt::Assign { target, expr, .. } => {
                 self.check_leaf(*target)?;
                 let r = self.compile(*expr)?;
                 self.bind(*target, r);

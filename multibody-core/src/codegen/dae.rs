@@ -7,7 +7,6 @@
 use std::sync::Arc;
 
 use crate::expr::{Arena, Id};
-use crate::simplify::causalize::Step;
 
 use super::{
     CodegenError, DEFAULT_MAX_FILL, DaeJacobian, ExtendedJacobian, Stmt, Tape, TapeBuilder,
@@ -52,13 +51,24 @@ impl InputLayout {
     }
 }
 
-/// A row of the residual, as the code generator needs it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Row {
-    /// Output `expr`.
-    Expr(Id),
-    /// Output `u'[k] - expr`.
-    DerivativeMinus(usize, Id),
+/// A row of the DAE residual: an equation's residual, or a state's derivative
+/// computed explicitly.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ResidualRow {
+    /// The residual of an equation (iteration block).
+    Equation {
+        /// The expression.
+        residual: Id,
+        /// The reduced equation it comes from.
+        equation: usize,
+    },
+    /// `u'[state] - value`: the derivative of a state is computed as `value` (a leaf).
+    StateDerivative {
+        /// Index in the unknowns of the state.
+        state: usize,
+        /// The leaf holding the computed derivative.
+        value: Id,
+    },
 }
 
 /// The compiled functions of a simplified system.
@@ -83,12 +93,12 @@ pub struct CompiledDae {
 
 /// What the code generator needs to know about a system.
 pub(crate) struct DaeSpec<'a> {
-    pub steps: &'a [Step],
+    pub steps: &'a [Stmt],
     /// Leaves read from `u` (in order of the unknowns).
     pub unknowns: &'a [Id],
     /// Leaves read from `u'`, with the index of their unknown.
     pub derivative_inputs: &'a [(Id, usize)],
-    pub rows: &'a [Row],
+    pub rows: &'a [ResidualRow],
     /// Observed outputs.
     pub observed: &'a [Id],
     /// Their names: exactly one per entry of `observed`, in the same order (a lazy
@@ -123,27 +133,7 @@ fn builder<'a>(
         b.input(leaf, layout.up(k));
     }
     for s in spec.steps {
-        let stmt = match s {
-            Step::Assign { target, expr, .. } => Stmt::Assign {
-                target: *target,
-                expr: *expr,
-            },
-            Step::SparseLinearSolve {
-                targets,
-                entries,
-                c,
-            } => Stmt::SparseLinearSolve {
-                targets: targets.clone(),
-                entries: entries.clone(),
-                c: c.clone(),
-            },
-            Step::LinearSolve { targets, a, c } => Stmt::LinearSolve {
-                targets: targets.clone(),
-                a: a.clone(),
-                c: c.clone(),
-            },
-        };
-        b.stmt(&stmt)?;
+        b.stmt(s)?;
     }
     Ok(b)
 }
@@ -179,11 +169,11 @@ pub(crate) fn compile_dae(
     let mut b = builder(arena, &leaves, spec, layout)?;
     for row in spec.rows {
         match *row {
-            Row::Expr(e) => {
-                b.output(e)?;
+            ResidualRow::Equation { residual, .. } => {
+                b.output(residual)?;
             }
-            Row::DerivativeMinus(k, e) => {
-                b.output_input_minus(layout.up(k), e)?;
+            ResidualRow::StateDerivative { state, value } => {
+                b.output_input_minus(layout.up(state), value)?;
             }
         }
     }

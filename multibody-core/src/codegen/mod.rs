@@ -32,7 +32,6 @@ mod tests_extended;
 #[cfg(test)]
 mod tests_specialize;
 
-pub use crate::solve::ida::EvalError;
 pub use compile::TapeBuilder;
 pub use extended::{DEFAULT_MAX_FILL, ExtendedJacobian, ExtendedWorkspace};
 pub use sparsity::{DaeJacobian, JacobianWorkspace};
@@ -40,7 +39,9 @@ pub use tape::{Tape, Workspace};
 
 use crate::expr::Id;
 
-/// A statement executed in order before outputs are read.
+/// A statement executed in order before outputs are read: the sorted, solved equations
+/// that [`structural_simplify`](crate::simplify::structural_simplify) hands to the
+/// compiler, on plain expression ids.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Stmt {
     /// `target := expr`: `target` is a leaf node (a `Var` or `Der` node) of the arena;
@@ -50,6 +51,9 @@ pub enum Stmt {
         target: Id,
         /// The expression computing it.
         expr: Id,
+        /// The equation this solves, an index into the caller's equations, for
+        /// messages (`usize::MAX` for a temporary).
+        equation: usize,
     },
     /// Solves the dense linear system `A x + c = 0` for the leaves `targets` (k of
     /// them). Closed form when k == 1 (`x = -c / a`), LU with partial pivoting
@@ -75,6 +79,17 @@ pub enum Stmt {
         /// The k expressions of the constant vector `c`.
         c: Vec<Id>,
     },
+}
+
+/// An error evaluating a compiled function (a singular linear block, a value outside a
+/// function's domain, a non-finite result).
+#[derive(Debug, Clone)]
+pub struct EvalError {
+    /// Human-readable description of what went wrong.
+    pub message: String,
+    /// `true` if the integrator may retry with a smaller step (e.g. a value outside the
+    /// domain of a function), `false` to stop the integration.
+    pub recoverable: bool,
 }
 
 /// Errors found while compiling expressions into a tape.

@@ -496,11 +496,13 @@ fn dead_code_is_removed() {
     b.stmt(&Stmt::Assign {
         target: v,
         expr: big,
+        equation: usize::MAX,
     })
     .unwrap();
     b.stmt(&Stmt::Assign {
         target: w,
         expr: sy,
+        equation: usize::MAX,
     })
     .unwrap();
     b.output(o).unwrap();
@@ -548,9 +550,14 @@ fn undefined_leaf_is_an_error() {
     let r = b.stmt(&Stmt::Assign {
         target: y,
         expr: dy,
+        equation: usize::MAX,
     });
     assert!(matches!(r, Err(CodegenError::UndefinedLeaf(_))));
-    let r = b.stmt(&Stmt::Assign { target: e, expr: x });
+    let r = b.stmt(&Stmt::Assign {
+        target: e,
+        expr: x,
+        equation: usize::MAX,
+    });
     assert!(matches!(r, Err(CodegenError::NotALeaf(_))));
     assert!(matches!(
         b.output_input_minus(3, x),
@@ -571,9 +578,19 @@ fn assignments_and_rebinding() {
     let mut b = TapeBuilder::new(&a, 2);
     b.input(x, 0);
     b.input(y, 1);
-    b.stmt(&Stmt::Assign { target: v, expr: x }).unwrap();
+    b.stmt(&Stmt::Assign {
+        target: v,
+        expr: x,
+        equation: usize::MAX,
+    })
+    .unwrap();
     b.output(e).unwrap();
-    b.stmt(&Stmt::Assign { target: v, expr: y }).unwrap();
+    b.stmt(&Stmt::Assign {
+        target: v,
+        expr: y,
+        equation: usize::MAX,
+    })
+    .unwrap();
     b.output(e).unwrap();
     let tape = b.build();
     let mut ws = tape.workspace();
@@ -642,6 +659,7 @@ fn one_builder_gives_tapes_of_chosen_outputs() {
     b.stmt(&Stmt::Assign {
         target: v,
         expr: xy,
+        equation: usize::MAX,
     })
     .unwrap();
     assert_eq!(b.output(sv).unwrap(), 0);

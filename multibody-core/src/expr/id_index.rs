@@ -5,14 +5,27 @@ use super::Id;
 /// A `u32` per id (`u32::MAX` when absent), growing (doubling) on insertion: the
 /// storage of [`IdIndex`] and [`NodeMap`](super::NodeMap).
 #[derive(Clone, Debug, Default)]
-pub(super) struct DenseU32(Vec<u32>);
+pub(crate) struct DenseU32(Vec<u32>);
 
 impl DenseU32 {
     const NONE: u32 = u32::MAX;
 
+    /// An empty map sized for ids below `len`.
+    pub(crate) fn with_len(len: usize) -> Self {
+        DenseU32(vec![Self::NONE; len])
+    }
+
+    /// Forgets the value of `id`.
+    #[inline]
+    pub(crate) fn remove(&mut self, id: Id) {
+        if let Some(v) = self.0.get_mut(id.index()) {
+            *v = Self::NONE;
+        }
+    }
+
     /// The value of `id`, if set.
     #[inline]
-    pub(super) fn get(&self, id: Id) -> Option<u32> {
+    pub(crate) fn get(&self, id: Id) -> Option<u32> {
         match self.0.get(id.index()) {
             Some(&v) if v != Self::NONE => Some(v),
             _ => None,
@@ -21,7 +34,7 @@ impl DenseU32 {
 
     /// Sets the value of `id`.
     #[inline]
-    pub(super) fn insert(&mut self, id: Id, v: u32) {
+    pub(crate) fn insert(&mut self, id: Id, v: u32) {
         let i = id.index();
         if i >= self.0.len() {
             self.0.resize((i + 1).max(2 * self.0.len()), Self::NONE);
@@ -30,7 +43,7 @@ impl DenseU32 {
     }
 
     /// Forgets every value.
-    pub(super) fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.0.clear();
     }
 }

@@ -27,6 +27,7 @@ mod vector;
 pub use arena::Arena;
 pub use display::NameResolver;
 pub use handle::Expr;
+pub(crate) use id_index::DenseU32;
 pub use id_index::IdIndex;
 pub use linear_form::LinearForm;
 pub use node_map::{NodeMap, NodeTable};

@@ -14,7 +14,7 @@ use crate::expr::Expr;
 use crate::hash::HashMap;
 
 use super::error::ModelError;
-use super::graph::{GraphDecl, OverdeterminedGroup};
+use super::overdetermined::{GraphDecl, OverdeterminedGroup};
 use super::system::{Equation, System, join_path};
 
 /// An equation produced by the graph, with where it comes from.

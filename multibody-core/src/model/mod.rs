@@ -5,22 +5,23 @@ mod balance;
 mod connection_graph;
 mod error;
 mod flatten;
-mod graph;
 mod named;
+mod overdetermined;
 mod path_index;
 mod shared_text;
 mod system;
 mod text;
 mod typed;
 mod variable;
+mod vector;
 
 pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{
     FlatAssertion, FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten,
 };
-pub use graph::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use named::{Named, names};
+pub use overdetermined::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
 pub use system::{
     Assertion, Checks, Component, Condition, Connection, Equation, StructuralValue, System,

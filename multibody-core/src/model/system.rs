@@ -76,9 +76,9 @@ pub struct System {
     /// (`der(R.T) = -skew(R.w) R.T`): `(variable, derivative)`.
     pub derivative_rules: Vec<(Expr, Expr)>,
     /// Overdetermined variable groups declared here (an orientation in a frame).
-    pub overdetermined: Vec<super::graph::OverdeterminedGroup>,
+    pub overdetermined: Vec<super::overdetermined::OverdeterminedGroup>,
     /// Roots, potential roots and branches of the virtual connection graph.
-    pub graph: Vec<super::graph::GraphDecl>,
+    pub graph: Vec<super::overdetermined::GraphDecl>,
     /// The numeric structural parameters the component was built with (`n`, `r`,
     /// `radius`, ...; booleans as 0 or 1, an unset `Option` left out), by local name:
     /// what diagnoses of mechanisms and rendering read.

@@ -11,6 +11,7 @@
 
 use crate::hash::{HashMap, HashSet};
 
+use crate::codegen::Stmt;
 use crate::expr::{Arena, Id, IdIndex, LinearSolve, Node};
 use crate::structure::BipartiteGraph;
 use crate::structure::blt::blt_flat;
@@ -18,7 +19,7 @@ use crate::structure::dm::dulmage_mendelsohn;
 use crate::structure::matching::maximum_matching;
 use crate::structure::tearing::{TearingEquation, tear_with_priority};
 
-use super::pre_eliminate::{LinearRow, Reduced, back_substitution, pre_eliminate};
+use super::pre_eliminate::{LinearRow, PreEliminated, back_substitution, pre_eliminate};
 
 /// Limits deciding where linear blocks are solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,38 +59,6 @@ impl Default for LinearBlockLimits {
     }
 }
 
-/// A step of the computation, in execution order.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Step {
-    /// `target := expr`, from equation `equation`.
-    Assign {
-        /// The leaf assigned.
-        target: Id,
-        /// Its value.
-        expr: Id,
-        /// The equation solved (`usize::MAX` for temporaries).
-        equation: usize,
-    },
-    /// Solves `A x + c = 0` for `targets` (row-major `a`).
-    LinearSolve {
-        /// Unknowns solved for.
-        targets: Vec<Id>,
-        /// Matrix entries, row-major.
-        a: Vec<Id>,
-        /// Constant terms.
-        c: Vec<Id>,
-    },
-    /// Solves `A x + c = 0` for `targets` with a sparse `A`.
-    SparseLinearSolve {
-        /// Unknowns solved for.
-        targets: Vec<Id>,
-        /// Structurally non-zero entries `(row, column, value)`.
-        entries: Vec<(usize, usize, Id)>,
-        /// Constant terms.
-        c: Vec<Id>,
-    },
-}
-
 /// How a block is solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BlockKind {
@@ -120,7 +89,7 @@ pub struct BlockInfo {
 #[derive(Clone, Debug, Default)]
 pub struct Schedule {
     /// Steps in execution order.
-    pub steps: Vec<Step>,
+    pub steps: Vec<Stmt>,
     /// Unknown leaves that are inputs to the steps (iteration variables).
     pub iteration: Vec<Id>,
     /// Residual expressions (as many as iteration variables) with their equation.
@@ -329,7 +298,7 @@ fn scalar_block(
     }
     match solved {
         Some(sol) if safe_coefficient(arena, sol.coefficient, params) => {
-            out.steps.push(Step::Assign {
+            out.steps.push(Stmt::Assign {
                 target: x,
                 expr: sol.solution,
                 equation: e,
@@ -339,7 +308,7 @@ fn scalar_block(
             let mut map = HashMap::default();
             map.insert(x, arena.zero());
             let c = arena.substitute_leaves(r, &map);
-            out.steps.push(Step::LinearSolve {
+            out.steps.push(Stmt::LinearSolve {
                 targets: vec![x],
                 a: vec![sol.coefficient],
                 c: vec![c],
@@ -478,7 +447,7 @@ fn solve_block(
         let sol = arena
             .solve_linear(block_eqs[e], x)
             .expect("tearing assigns only solvable equations");
-        out.steps.push(Step::Assign {
+        out.steps.push(Stmt::Assign {
             target: x,
             expr: sol.solution,
             equation: eq_ids[e],
@@ -521,7 +490,7 @@ fn inline_linear(
     let r = torn.len();
     if r == 0 {
         for &(x, f, e) in &solutions {
-            out.steps.push(Step::Assign {
+            out.steps.push(Stmt::Assign {
                 target: x,
                 expr: f,
                 equation: e,
@@ -538,7 +507,7 @@ fn inline_linear(
             v
         } else {
             let tmp = temps.fresh(arena);
-            out.steps.push(Step::Assign {
+            out.steps.push(Stmt::Assign {
                 target: tmp,
                 expr: v,
                 equation: usize::MAX,
@@ -574,7 +543,7 @@ fn inline_linear(
                 v
             } else {
                 let tmp = temps.fresh(arena);
-                out.steps.push(Step::Assign {
+                out.steps.push(Stmt::Assign {
                     target: tmp,
                     expr: v,
                     equation: usize::MAX,
@@ -606,13 +575,13 @@ fn inline_linear(
         }
         c.push(arena.substitute_leaves(res, &alpha_map));
     }
-    out.steps.push(Step::LinearSolve {
+    out.steps.push(Stmt::LinearSolve {
         targets: torn.to_vec(),
         a: a_entries,
         c,
     });
     for &(x, f, e) in &solutions {
-        out.steps.push(Step::Assign {
+        out.steps.push(Stmt::Assign {
             target: x,
             expr: f,
             equation: e,
@@ -654,7 +623,7 @@ fn sparse_linear(
         match arena.node(e) {
             Node::Sum(ts, _) if ts.len() > 2 => {
                 let t = temps.fresh(arena);
-                out.steps.push(Step::Assign {
+                out.steps.push(Stmt::Assign {
                     target: t,
                     expr: e,
                     equation: usize::MAX,
@@ -666,7 +635,7 @@ fn sparse_linear(
     };
     let reduced = match limits.pre_elimination_fill {
         Some(fill) => pre_eliminate(arena, rows, vars.len(), params, fill, &mut compact),
-        None => Reduced {
+        None => PreEliminated {
             eliminations: Vec::new(),
             rows: rows.into_iter().enumerate().collect(),
             vars: (0..vars.len()).collect(),
@@ -687,7 +656,7 @@ fn sparse_linear(
             }
             c.push(r.c);
         }
-        out.steps.push(Step::SparseLinearSolve {
+        out.steps.push(Stmt::SparseLinearSolve {
             targets: reduced.vars.iter().map(|&j| vars[j]).collect(),
             entries,
             c,
@@ -695,7 +664,7 @@ fn sparse_linear(
     }
     for e in reduced.eliminations.iter().rev() {
         let value = back_substitution(arena, e, vars);
-        out.steps.push(Step::Assign {
+        out.steps.push(Stmt::Assign {
             target: vars[e.var],
             expr: value,
             equation: eq_ids[e.row],

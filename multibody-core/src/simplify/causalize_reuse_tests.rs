@@ -1,12 +1,13 @@
 //! A second causalization of the same equations (the initialization's) reuses how the
 //! first solved each one, and only where the residual and the unknown are the same.
 
+use crate::codegen::Stmt;
 use crate::expr::{Arena, Id, LinearSolve};
 use crate::hash::{HashMap, HashSet};
 use crate::structure::BipartiteGraph;
 
 use super::causalize::{
-    LinearBlockLimits, Schedule, SolvedFor, Step, Temporaries, causalize, causalize_graph,
+    LinearBlockLimits, Schedule, SolvedFor, Temporaries, causalize, causalize_graph,
 };
 
 /// `x + y - 3 = 0` and `2 y - p = 0` in the unknowns `x`, `y` (`p` a parameter): `y`
@@ -115,7 +116,7 @@ fn a_recorded_solution_is_taken_only_for_the_same_residual_and_unknown() {
             }),
         ],
     );
-    assert!(reused.steps.contains(&Step::Assign {
+    assert!(reused.steps.contains(&Stmt::Assign {
         target: y,
         expr: seven,
         equation: 1

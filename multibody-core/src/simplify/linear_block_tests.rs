@@ -5,8 +5,8 @@
 use crate::model::{System, Variable};
 use crate::solve::{DaeProblem, SolverOptions};
 
-use super::causalize::Step;
 use super::*;
+use crate::codegen::Stmt;
 
 const R1: f64 = 1.0;
 const R2: f64 = 2.0;
@@ -110,7 +110,7 @@ fn simplify(name: &str, limits: LinearBlockLimits) -> SimplifiedSystem {
 fn loop_targets(ssys: &SimplifiedSystem) -> Vec<String> {
     let mut out = Vec::new();
     for step in &ssys.schedule.steps {
-        if let Step::LinearSolve { targets, .. } | Step::SparseLinearSolve { targets, .. } = step {
+        if let Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } = step {
             out.extend(targets.iter().map(|&t| ssys.leaf_name(t)));
         }
     }
@@ -136,7 +136,7 @@ fn default_limits_solve_the_loop_inside_the_residual() {
         .steps
         .iter()
         .filter_map(|s| match s {
-            Step::LinearSolve { targets, a, c } => {
+            Stmt::LinearSolve { targets, a, c } => {
                 assert_eq!((a.len(), c.len()), (targets.len().pow(2), targets.len()));
                 Some(targets.len())
             }
@@ -236,7 +236,7 @@ fn block_above_the_limits_is_solved_by_sparse_lu_inside() {
         .steps
         .iter()
         .filter_map(|s| match s {
-            Step::SparseLinearSolve {
+            Stmt::SparseLinearSolve {
                 targets, entries, ..
             } => Some((targets.len(), entries.len())),
             _ => None,
@@ -277,7 +277,7 @@ fn pre_elimination_leaves_one_unknown_for_the_lu() {
         .steps
         .iter()
         .filter_map(|s| match s {
-            Step::SparseLinearSolve { targets, .. } => Some(targets.len()),
+            Stmt::SparseLinearSolve { targets, .. } => Some(targets.len()),
             _ => None,
         })
         .collect();

@@ -27,14 +27,16 @@ use crate::hash::{HashMap, HashSet};
 use std::sync::Arc;
 use std::time::Instant;
 
+pub use crate::codegen::dae::ResidualRow;
 pub use causalize::{BlockKind, LinearBlockLimits};
 pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
 pub use reduce::Slot;
-pub use system::{PhaseTimes, ResidualRow, SimplifiedSystem, StateCandidates, Statistics};
+pub use system::{PhaseTimes, SimplifiedSystem, StateCandidates, Statistics};
 
 use crate::Error;
-use crate::codegen::dae::{DaeSpec, Row, compile_dae};
+use crate::codegen::Stmt;
+use crate::codegen::dae::{DaeSpec, compile_dae};
 use crate::expr::Id;
 use crate::model::{EquationText, FlatOrigins, System, Variable, check_balance, flatten};
 use crate::structure::BipartiteGraph;
@@ -415,7 +417,7 @@ fn simplify_flat(
     let mut rows = Vec::new();
     let mut derivative_inputs = Vec::new();
     for &(r, e) in &schedule.residuals {
-        rows.push(system::ResidualRow::Equation {
+        rows.push(ResidualRow::Equation {
             residual: r,
             equation: e,
         });
@@ -426,7 +428,7 @@ fn simplify_flat(
         if iteration.contains(&d) {
             derivative_inputs.push((d, k));
         } else {
-            rows.push(system::ResidualRow::StateDerivative { state: k, value: d });
+            rows.push(ResidualRow::StateDerivative { state: k, value: d });
         }
     }
     debug_assert_eq!(rows.len(), unknowns.len());
@@ -450,22 +452,13 @@ fn simplify_flat(
     } else {
         Vec::new()
     };
-    let code_rows: Vec<Row> = rows
-        .iter()
-        .map(|r| match *r {
-            system::ResidualRow::Equation { residual, .. } => Row::Expr(residual),
-            system::ResidualRow::StateDerivative { state, value } => {
-                Row::DerivativeMinus(state, value)
-            }
-        })
-        .collect();
     let compiled = compile_dae(
         &mut flat.arena,
         &DaeSpec {
             steps: &schedule.steps,
             unknowns: &unknowns,
             derivative_inputs: &derivative_inputs,
-            rows: &code_rows,
+            rows: &rows,
             observed: &observed,
             observed_names,
             n_params: flat.parameters.len(),
@@ -497,7 +490,7 @@ fn simplify_flat(
         assignments: schedule
             .steps
             .iter()
-            .filter(|s| matches!(s, causalize::Step::Assign { equation, .. } if *equation != usize::MAX))
+            .filter(|s| matches!(s, Stmt::Assign { equation, .. } if *equation != usize::MAX))
             .count(),
         times: PhaseTimes {
             flatten_s,
@@ -557,12 +550,12 @@ fn simplify_flat(
 /// Observed outputs of slots: the flat variables, then the derivative slots in slot
 /// order.
 struct OutputIndex<'r> {
-    reduced: &'r reduce::Reduced,
+    reduced: &'r reduce::IndexReduced,
     derivative_output: Vec<usize>,
 }
 
 impl<'r> OutputIndex<'r> {
-    fn new(reduced: &'r reduce::Reduced, n_variables: usize) -> Self {
+    fn new(reduced: &'r reduce::IndexReduced, n_variables: usize) -> Self {
         let mut derivative_output = vec![usize::MAX; reduced.slots.len()];
         let mut next = n_variables;
         for (k, s) in reduced.slots.iter().enumerate() {
@@ -621,7 +614,7 @@ impl<'r> OutputIndex<'r> {
 /// Where the compiled functions hold the quantities of a group of dynamic states.
 fn dynamic_outputs(
     group: &dynamic_states::DynamicStateGroup,
-    reduced: &reduce::Reduced,
+    reduced: &reduce::IndexReduced,
     index_of: &HashMap<Id, usize>,
     n_variables: usize,
 ) -> dynamic_states::GroupOutputs {
@@ -641,7 +634,7 @@ fn dynamic_outputs(
 /// its chosen candidates are unknowns (`None` when one is not).
 fn static_group(
     g: &reduce::DynamicCandidates,
-    reduced: &reduce::Reduced,
+    reduced: &reduce::IndexReduced,
     index_of: &HashMap<Id, usize>,
     n_variables: usize,
 ) -> Option<dynamic_states::StaticGroup> {
@@ -677,7 +670,7 @@ fn observed_outputs(
     variables: &Arc<Vec<Variable>>,
     replaced: &[Option<Id>],
     derivative: &[Option<u32>],
-    reduced: &reduce::Reduced,
+    reduced: &reduce::IndexReduced,
 ) -> (Vec<Id>, Arc<crate::names::NameIndex>) {
     let mut out = Vec::with_capacity(variables.len() + reduced.slots.len());
     let mut var_leaf: Vec<Option<Id>> = vec![None; variables.len()];

@@ -50,7 +50,7 @@ pub(crate) struct Elimination {
 
 /// What remains after pre-elimination.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct Reduced {
+pub(crate) struct PreEliminated {
     /// Eliminations in order; back substitution runs them in reverse.
     pub eliminations: Vec<Elimination>,
     /// Rows left for the LU (indices into the block's rows), with their updated forms.
@@ -158,7 +158,7 @@ pub(crate) fn pre_eliminate(
     params: &[f64],
     max_fill: usize,
     compact: &mut dyn FnMut(&mut Arena, Id) -> Id,
-) -> Reduced {
+) -> PreEliminated {
     let mut rows = rows;
     let mut row_alive = vec![true; rows.len()];
     let mut var_alive = vec![true; n_vars];
@@ -354,7 +354,7 @@ pub(crate) fn pre_eliminate(
         .filter(|&(i, _)| row_alive[i])
         .collect();
     let vars = (0..n_vars).filter(|&j| var_alive[j]).collect();
-    Reduced {
+    PreEliminated {
         eliminations,
         rows: rows_left,
         vars,

@@ -16,7 +16,7 @@ fn rows(arena: &mut Arena, spec: &[(&[(usize, f64)], f64)]) -> Vec<LinearRow> {
 }
 
 /// Solves the reduced system densely and back-substitutes, returning every unknown.
-fn solve_reduced(arena: &mut Arena, r: &Reduced, n: usize) -> Vec<f64> {
+fn solve_reduced(arena: &mut Arena, r: &PreEliminated, n: usize) -> Vec<f64> {
     let m = r.vars.len();
     let mut a = vec![vec![0.0; m + 1]; m];
     for (row, (_, lr)) in r.rows.iter().enumerate() {

@@ -47,7 +47,7 @@ pub struct ReducedEquation {
 
 /// The index-reduced system with its state selection.
 #[derive(Clone, Debug)]
-pub(crate) struct Reduced {
+pub(crate) struct IndexReduced {
     pub slots: Vec<Slot>,
     /// The slot of each leaf, indexed by the leaf's id.
     pub slot_of: IdIndex,
@@ -228,7 +228,7 @@ pub(crate) fn with_reduced_form(
 }
 
 /// Runs index reduction and state selection.
-pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, SimplifyError> {
+pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced, SimplifyError> {
     let ReduceInput {
         arena,
         variables,
@@ -390,7 +390,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<Reduced, Sim
     );
     let mut dummy = selection.dummy.clone();
     dummy.resize(table.slots.len(), false);
-    Ok(Reduced {
+    Ok(IndexReduced {
         slot_of: table.slot_of,
         slots: table.slots,
         var_diff,

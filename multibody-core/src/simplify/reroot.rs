@@ -12,20 +12,21 @@
 use crate::expr::{Arena, Id};
 use crate::hash::{HashMap, HashSet};
 
-use super::causalize::{Schedule, Step, safe_coefficient};
+use super::causalize::{Schedule, safe_coefficient};
+use crate::codegen::Stmt;
 
 /// How far a chain is followed.
 const MAX_CHAIN: usize = 8;
 
 /// Position of each assignment's target in `steps`.
-fn positions(steps: &[Step]) -> HashMap<Id, usize> {
+fn positions(steps: &[Stmt]) -> HashMap<Id, usize> {
     let mut at = HashMap::default();
     for (k, s) in steps.iter().enumerate() {
         match s {
-            Step::Assign { target, .. } => {
+            Stmt::Assign { target, .. } => {
                 at.insert(*target, k);
             }
-            Step::LinearSolve { targets, .. } | Step::SparseLinearSolve { targets, .. } => {
+            Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } => {
                 for t in targets {
                     at.insert(*t, k);
                 }
@@ -39,7 +40,7 @@ fn positions(steps: &[Step]) -> HashMap<Id, usize> {
 /// pairs, first step first.
 fn find_chain(
     arena: &mut Arena,
-    steps: &[Step],
+    steps: &[Stmt],
     x: Id,
     priority: &HashMap<Id, f64>,
     params: &[f64],
@@ -51,7 +52,7 @@ fn find_chain(
     for _ in 0..MAX_CHAIN {
         // The first assignment that uses `current` and can be solved back for it.
         let next = steps.iter().enumerate().find_map(|(k, s)| match s {
-            Step::Assign { target, expr, .. }
+            Stmt::Assign { target, expr, .. }
                 if !used.contains(&k) && arena.contains(*expr, current) =>
             {
                 let residual = arena.sub(*target, *expr);
@@ -99,7 +100,7 @@ pub(crate) fn reroot_iteration_variables(
             .expect("a chain has steps");
         let mut valid = true;
         for &(k, input) in &chain {
-            let Step::Assign { expr, .. } = &steps[k] else {
+            let Stmt::Assign { expr, .. } = &steps[k] else {
                 unreachable!("chains are made of assignments")
             };
             for leaf in arena.leaves(*expr) {
@@ -115,17 +116,17 @@ pub(crate) fn reroot_iteration_variables(
         let targets: HashSet<Id> = chain
             .iter()
             .map(|&(k, _)| match &steps[k] {
-                Step::Assign { target, .. } => *target,
+                Stmt::Assign { target, .. } => *target,
                 _ => unreachable!("chains are made of assignments"),
             })
             .collect();
         for (k, s) in steps.iter().enumerate().take(insert_at) {
             let reads = match s {
-                Step::Assign { expr, .. } => arena.leaves(*expr),
-                Step::LinearSolve { a, c, .. } => {
+                Stmt::Assign { expr, .. } => arena.leaves(*expr),
+                Stmt::LinearSolve { a, c, .. } => {
                     a.iter().chain(c).flat_map(|&e| arena.leaves(e)).collect()
                 }
-                Step::SparseLinearSolve { entries, c, .. } => entries
+                Stmt::SparseLinearSolve { entries, c, .. } => entries
                     .iter()
                     .map(|e| e.2)
                     .chain(c.iter().copied())
@@ -147,7 +148,7 @@ pub(crate) fn reroot_iteration_variables(
         // for its input, computes the previous variable.
         let mut reversed = Vec::new();
         for &(k, input) in chain.iter().rev() {
-            let Step::Assign {
+            let Stmt::Assign {
                 target,
                 expr,
                 equation,
@@ -159,17 +160,17 @@ pub(crate) fn reroot_iteration_variables(
             let back = arena
                 .solve_linear(residual, input)
                 .expect("checked invertible");
-            reversed.push(Step::Assign {
+            reversed.push(Stmt::Assign {
                 target: input,
                 expr: back.solution,
                 equation,
             });
         }
         let new_iteration = match &schedule.steps[chain.last().expect("non-empty").0] {
-            Step::Assign { target, .. } => *target,
+            Stmt::Assign { target, .. } => *target,
             _ => unreachable!("chains are made of assignments"),
         };
-        let mut steps: Vec<Step> = Vec::with_capacity(schedule.steps.len());
+        let mut steps: Vec<Stmt> = Vec::with_capacity(schedule.steps.len());
         for (k, s) in schedule.steps.drain(..).enumerate() {
             if k == insert_at {
                 steps.extend(reversed.iter().cloned());
@@ -205,12 +206,12 @@ mod tests {
         let s_of_y = a.mul(two, y);
         let mut schedule = Schedule {
             steps: vec![
-                Step::Assign {
+                Stmt::Assign {
                     target: y,
                     expr: y_of_x,
                     equation: 1,
                 },
-                Step::Assign {
+                Stmt::Assign {
                     target: s,
                     expr: s_of_y,
                     equation: 2,
@@ -234,7 +235,7 @@ mod tests {
         };
         let mut values: HashMap<u32, f64> = [(2, 2.0)].into_iter().collect();
         for step in &schedule.steps {
-            let Step::Assign { target, expr, .. } = step else {
+            let Stmt::Assign { target, expr, .. } = step else {
                 panic!("only assignments")
             };
             let v = a

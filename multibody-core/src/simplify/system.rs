@@ -4,31 +4,13 @@
 use crate::hash::HashMap;
 use std::fmt;
 
-use crate::codegen::dae::CompiledDae;
+use crate::codegen::Stmt;
+use crate::codegen::dae::{CompiledDae, ResidualRow};
 use crate::expr::{Arena, Id, NameResolver};
 use crate::model::{Parameter, Variable};
 
 use super::causalize::{BlockInfo, BlockKind, Schedule};
 use super::reduce::{ReducedEquation, Slot};
-
-/// A row of the DAE residual.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum ResidualRow {
-    /// The residual of an equation (iteration block).
-    Equation {
-        /// The expression.
-        residual: Id,
-        /// The reduced equation it comes from.
-        equation: usize,
-    },
-    /// `u'[state] - value`: the derivative of a state is computed as `value` (a leaf).
-    StateDerivative {
-        /// Index in the unknowns of the state.
-        state: usize,
-        /// The leaf holding the computed derivative.
-        value: Id,
-    },
-}
 
 /// Times of the phases of model compilation, in seconds.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -299,11 +281,10 @@ impl SimplifiedSystem {
         let mut computed: HashMap<Id, String> = HashMap::default();
         for step in &self.schedule.steps {
             match step {
-                super::causalize::Step::Assign { target, expr, .. } => {
+                Stmt::Assign { target, expr, .. } => {
                     computed.insert(*target, self.arena.display(*expr, &names));
                 }
-                super::causalize::Step::LinearSolve { targets, .. }
-                | super::causalize::Step::SparseLinearSolve { targets, .. } => {
+                Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } => {
                     let k = targets.len();
                     for &t in targets {
                         computed.insert(t, format!("(solved in a linear system of {k})"));
@@ -340,15 +321,14 @@ impl SimplifiedSystem {
         }
         for step in &self.schedule.steps {
             match step {
-                super::causalize::Step::Assign {
+                Stmt::Assign {
                     target,
                     expr,
                     equation,
                 } if *equation != usize::MAX => {
                     out.push((self.leaf_name(*target), self.arena.display(*expr, &names)));
                 }
-                super::causalize::Step::LinearSolve { targets, .. }
-                | super::causalize::Step::SparseLinearSolve { targets, .. } => {
+                Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } => {
                     for &t in targets {
                         if self.slot_of.contains(t) {
                             out.push((self.leaf_name(t), "linear system".into()));

@@ -17,17 +17,9 @@ use std::ptr;
 
 use sundials_sys as sys;
 
-use super::linsol;
+pub use crate::codegen::EvalError;
 
-/// Error from a model function evaluation inside a callback.
-#[derive(Debug, Clone)]
-pub struct EvalError {
-    /// Human-readable description of what went wrong.
-    pub message: String,
-    /// `true` if IDA may retry with a smaller step (e.g. a value outside the
-    /// domain of a function), `false` to stop the integration.
-    pub recoverable: bool,
-}
+use super::linsol;
 
 /// The DAE F(t, y, y') = 0 with its Jacobian J = dF/dy + cj dF/dy'.
 pub trait DaeFunctions {
@@ -40,7 +32,7 @@ pub trait DaeFunctions {
     /// Evaluates the residual `out = F(t, y, y')`.
     fn residual(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64])
     -> Result<(), EvalError>;
-    /// CSC sparsity pattern of J: (col_ptr of len `jacobian_dimension() + 1`, row_idx sorted within each column). None = no analytic Jacobian (only allowed with LinearSolver::DenseDifferenceQuotient).
+    /// CSC sparsity pattern of J: (col_ptr of len `jacobian_dimension() + 1`, row_idx sorted within each column). None = no analytic Jacobian (only allowed with IdaMatrix::DenseDifferenceQuotient).
     fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)>;
     /// Size of the matrix described by [`jacobian_pattern`](Self::jacobian_pattern):
     /// `len()` (the default) for J itself, more for an *extended* Jacobian (J bordered by
@@ -62,9 +54,10 @@ pub trait DaeFunctions {
     ) -> Result<(), EvalError>;
 }
 
-/// Linear solver used for IDA's Newton iteration.
+/// How IDA's iteration matrix is stored, filled and factorized: what a
+/// [`LinearSolver`](super::LinearSolver) choice resolves to for one problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LinearSolver {
+pub enum IdaMatrix {
     /// SUNDIALS dense matrix filled from the analytic Jacobian
     Dense,
     /// SUNDIALS dense with IDA's difference-quotient Jacobian (no jacobian() calls)
@@ -94,7 +87,7 @@ pub struct IdaSettings {
     /// only applied when `id` is given.
     pub suppress_alg: bool,
     /// Linear solver for the Newton iteration.
-    pub linear_solver: LinearSolver,
+    pub matrix: IdaMatrix,
     /// run IDACalcIC(IDA_YA_YDP_INIT) before integrating
     pub calc_ic: bool,
 }
@@ -110,7 +103,7 @@ impl Default for IdaSettings {
             max_steps: 100_000,
             id: Vec::new(),
             suppress_alg: true,
-            linear_solver: LinearSolver::SparseLu,
+            matrix: IdaMatrix::SparseLu,
             calc_ic: false,
         }
     }
@@ -183,7 +176,7 @@ fn invalid(t: f64, message: impl Into<String>) -> IdaError {
 
 /// Which callback produced an [`EvalError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Origin {
+enum Callback {
     Residual,
     Jacobian,
 }
@@ -194,7 +187,7 @@ struct CallbackData<'a> {
     n: usize,
     /// Size of the Jacobian matrix (`n`, or more for an extended Jacobian).
     dim: usize,
-    solver: LinearSolver,
+    solver: IdaMatrix,
     /// Validated pattern (usize, for scattering into the dense matrix).
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
@@ -204,11 +197,11 @@ struct CallbackData<'a> {
     /// Jacobian values buffer for the dense path.
     values: Vec<f64>,
     /// Last failure reported by a model callback.
-    last_error: Option<(f64, Origin, EvalError)>,
+    last_error: Option<(f64, Callback, EvalError)>,
 }
 
 impl CallbackData<'_> {
-    fn record(&mut self, t: f64, origin: Origin, e: EvalError) -> c_int {
+    fn record(&mut self, t: f64, origin: Callback, e: EvalError) -> c_int {
         let code = if e.recoverable { 1 } else { -1 };
         log::debug!(
             "{origin:?} evaluation failed at t = {t} (recoverable: {}): {}",
@@ -306,7 +299,7 @@ impl Guard<'_> {
         unsafe { self.sink.as_mut().and_then(|s| s.last.take()) }
     }
 
-    fn take_eval_error(&mut self) -> Option<(f64, Origin, EvalError)> {
+    fn take_eval_error(&mut self) -> Option<(f64, Callback, EvalError)> {
         // SAFETY: as above; callbacks only run inside SUNDIALS calls.
         unsafe { self.data.as_mut().and_then(|d| d.last_error.take()) }
     }
@@ -326,7 +319,7 @@ impl Guard<'_> {
                 | sys::IDA_FIRST_RES_FAIL
                 | sys::IDA_NO_RECOVERY
         ) || (matches!(flag, sys::IDA_LSETUP_FAIL)
-            && matches!(eval, Some((_, Origin::Jacobian, _))));
+            && matches!(eval, Some((_, Callback::Jacobian, _))));
         if let (false, Some((te, origin, e))) = (eval_used, &eval) {
             message.push_str(&format!(
                 "; last model evaluation error ({}) at t = {te}: {}",
@@ -375,10 +368,10 @@ impl Guard<'_> {
     }
 }
 
-fn origin_name(o: Origin) -> &'static str {
+fn origin_name(o: Callback) -> &'static str {
     match o {
-        Origin::Residual => "residual",
-        Origin::Jacobian => "Jacobian",
+        Callback::Residual => "residual",
+        Callback::Jacobian => "Jacobian",
     }
 }
 
@@ -424,7 +417,7 @@ fn flag_name(flag: c_int) -> String {
 /// Explains an IDA return flag in words.
 fn describe_flag(
     flag: c_int,
-    eval: Option<&(f64, Origin, EvalError)>,
+    eval: Option<&(f64, Callback, EvalError)>,
     settings: &IdaSettings,
 ) -> String {
     let eval_msg = |what: &str| match eval {
@@ -449,7 +442,7 @@ fn describe_flag(
         }
         sys::IDA_LINIT_FAIL => "the linear solver could not be initialized".into(),
         sys::IDA_LSETUP_FAIL => match eval {
-            Some((_, Origin::Jacobian, _)) => eval_msg("the Jacobian function failed"),
+            Some((_, Callback::Jacobian, _)) => eval_msg("the Jacobian function failed"),
             _ => "linear solver failed (singular iteration matrix)".into(),
         },
         sys::IDA_LSOLVE_FAIL => "linear solver failed (singular iteration matrix)".into(),
@@ -517,7 +510,7 @@ fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
 unsafe fn record_panic(
     ud: *mut c_void,
     t: f64,
-    origin: Origin,
+    origin: Callback,
     p: &(dyn std::any::Any + Send),
 ) -> c_int {
     let e = EvalError {
@@ -552,19 +545,19 @@ unsafe extern "C" fn residual_cb(
                     None => 0,
                     Some(i) => d.record(
                         t,
-                        Origin::Residual,
+                        Callback::Residual,
                         EvalError {
                             message: format!("residual component {i} is not finite"),
                             recoverable: true,
                         },
                     ),
                 },
-                Err(e) => d.record(t, Origin::Residual, e),
+                Err(e) => d.record(t, Callback::Residual, e),
             }
         }
     }));
     // SAFETY: the borrow inside the closure has ended.
-    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Origin::Residual, p.as_ref()) })
+    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Residual, p.as_ref()) })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -592,7 +585,7 @@ unsafe extern "C" fn jacobian_cb(
             let (y, ypv) = (vec_ref(yy, n), vec_ref(yp, n));
             let nnz = d.row_idx.len();
             match d.solver {
-                LinearSolver::SparseLu => {
+                IdaMatrix::SparseLu => {
                     let ptrs = sys::SUNSparseMatrix_IndexPointers(jac);
                     let rows = sys::SUNSparseMatrix_IndexValues(jac);
                     let data = sys::SUNSparseMatrix_Data(jac);
@@ -605,18 +598,18 @@ unsafe extern "C" fn jacobian_cb(
                     let values = std::slice::from_raw_parts_mut(data, nnz);
                     match d.f.jacobian(t, y, ypv, cj, values) {
                         Ok(()) => 0,
-                        Err(e) => d.record(t, Origin::Jacobian, e),
+                        Err(e) => d.record(t, Callback::Jacobian, e),
                     }
                 }
-                LinearSolver::Dense | LinearSolver::DenseDifferenceQuotient => {
+                IdaMatrix::Dense | IdaMatrix::DenseDifferenceQuotient => {
                     let CallbackData { f, values, .. } = &mut *d;
                     if let Err(e) = f.jacobian(t, y, ypv, cj, values) {
-                        return d.record(t, Origin::Jacobian, e);
+                        return d.record(t, Callback::Jacobian, e);
                     }
                     if let Some(k) = d.values.iter().position(|v| !v.is_finite()) {
                         return d.record(
                             t,
-                            Origin::Jacobian,
+                            Callback::Jacobian,
                             EvalError {
                                 message: format!("Jacobian entry {k} is not finite"),
                                 recoverable: true,
@@ -640,7 +633,7 @@ unsafe extern "C" fn jacobian_cb(
         }
     }));
     // SAFETY: the borrow inside the closure has ended.
-    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Origin::Jacobian, p.as_ref()) })
+    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Jacobian, p.as_ref()) })
 }
 
 unsafe extern "C" fn error_handler_cb(
@@ -839,15 +832,15 @@ pub fn integrate_monitored(
     // Jacobian pattern.
     let pattern = f.jacobian_pattern();
     let dim = f.jacobian_dimension();
-    if dim < n || (dim > n && settings.linear_solver != LinearSolver::SparseLu) {
+    if dim < n || (dim > n && settings.matrix != IdaMatrix::SparseLu) {
         return Err(invalid(
             t0,
             format!(
-                "jacobian_dimension() is {dim} for {n} unknowns; an extended Jacobian needs LinearSolver::SparseLu"
+                "jacobian_dimension() is {dim} for {n} unknowns; an extended Jacobian needs IdaMatrix::SparseLu"
             ),
         ));
     }
-    let (col_ptr, row_idx) = match (pattern, settings.linear_solver) {
+    let (col_ptr, row_idx) = match (pattern, settings.matrix) {
         (Some((c, r)), _) => {
             if !linsol::valid_csc(dim, &c, &r) {
                 return Err(invalid(
@@ -857,7 +850,7 @@ pub fn integrate_monitored(
             }
             (c, r)
         }
-        (None, LinearSolver::DenseDifferenceQuotient) => (Vec::new(), Vec::new()),
+        (None, IdaMatrix::DenseDifferenceQuotient) => (Vec::new(), Vec::new()),
         (None, s) => {
             return Err(invalid(
                 t0,
@@ -878,10 +871,10 @@ pub fn integrate_monitored(
         f,
         n,
         dim,
-        solver: settings.linear_solver,
+        solver: settings.matrix,
         col_ptr_i: col_ptr.iter().map(|&v| v as sys::sunindextype).collect(),
         row_idx_i: row_idx.iter().map(|&v| v as sys::sunindextype).collect(),
-        values: if settings.linear_solver == LinearSolver::Dense {
+        values: if settings.matrix == IdaMatrix::Dense {
             vec![0.0; nnz]
         } else {
             Vec::new()
@@ -971,8 +964,8 @@ pub fn integrate_monitored(
         }
 
         // Linear solver.
-        match settings.linear_solver {
-            LinearSolver::Dense | LinearSolver::DenseDifferenceQuotient => {
+        match settings.matrix {
+            IdaMatrix::Dense | IdaMatrix::DenseDifferenceQuotient => {
                 g.mat = sys::SUNDenseMatrix(n_i, n_i, g.ctx);
                 if g.mat.is_null() {
                     return Err(g.setup_failed(t0, "SUNDenseMatrix failed".into()));
@@ -982,7 +975,7 @@ pub fn integrate_monitored(
                     return Err(g.setup_failed(t0, "SUNLinSol_Dense failed".into()));
                 }
             }
-            LinearSolver::SparseLu => {
+            IdaMatrix::SparseLu => {
                 g.mat = sys::SUNSparseMatrix(dim_i, dim_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
                 if g.mat.is_null() {
                     return Err(g.setup_failed(t0, "SUNSparseMatrix failed".into()));
@@ -995,7 +988,7 @@ pub fn integrate_monitored(
         }
         let flag = sys::IDASetLinearSolver(mem, g.ls, g.mat);
         g.check(flag, t0, "IDASetLinearSolver", settings)?;
-        if settings.linear_solver != LinearSolver::DenseDifferenceQuotient {
+        if settings.matrix != IdaMatrix::DenseDifferenceQuotient {
             let flag = sys::IDASetJacFn(mem, Some(jacobian_cb));
             g.check(flag, t0, "IDASetJacFn", settings)?;
         }
@@ -1162,15 +1155,15 @@ mod tests {
         }
     }
 
-    fn robertson(solver: LinearSolver) -> (Vec<(f64, Vec<f64>)>, IdaStats) {
+    fn robertson(solver: IdaMatrix) -> (Vec<(f64, Vec<f64>)>, IdaStats) {
         let mut f = Robertson {
-            analytic: solver != LinearSolver::DenseDifferenceQuotient,
+            analytic: solver != IdaMatrix::DenseDifferenceQuotient,
         };
         let settings = IdaSettings {
             rtol: 1e-8,
             atol_vector: Some(vec![1e-12, 1e-16, 1e-12]),
             id: vec![1.0, 1.0, 0.0],
-            linear_solver: solver,
+            matrix: solver,
             ..IdaSettings::default()
         };
         let times: Vec<f64> = (0..7).map(|k| 0.4 * 10f64.powi(k)).collect();
@@ -1195,9 +1188,9 @@ mod tests {
     fn robertson_all_solvers() {
         let reference = [9.8517e-01, 3.3864e-05, 1.4794e-02];
         let results: Vec<_> = [
-            LinearSolver::Dense,
-            LinearSolver::DenseDifferenceQuotient,
-            LinearSolver::SparseLu,
+            IdaMatrix::Dense,
+            IdaMatrix::DenseDifferenceQuotient,
+            IdaMatrix::SparseLu,
         ]
         .into_iter()
         .map(robertson)
@@ -1291,12 +1284,12 @@ mod tests {
         }
     }
 
-    fn osc_settings(solver: LinearSolver) -> IdaSettings {
+    fn osc_settings(solver: IdaMatrix) -> IdaSettings {
         IdaSettings {
             rtol: 1e-10,
             atol: 1e-12,
             id: vec![1.0, 1.0, 0.0],
-            linear_solver: solver,
+            matrix: solver,
             ..IdaSettings::default()
         }
     }
@@ -1304,9 +1297,9 @@ mod tests {
     #[test]
     fn oscillator_times_and_every_step() {
         for solver in [
-            LinearSolver::Dense,
-            LinearSolver::DenseDifferenceQuotient,
-            LinearSolver::SparseLu,
+            IdaMatrix::Dense,
+            IdaMatrix::DenseDifferenceQuotient,
+            IdaMatrix::SparseLu,
         ] {
             let mut f = Oscillator {
                 fail_after: None,
@@ -1367,7 +1360,7 @@ mod tests {
 
     #[test]
     fn fatal_eval_error_is_reported() {
-        for solver in [LinearSolver::Dense, LinearSolver::SparseLu] {
+        for solver in [IdaMatrix::Dense, IdaMatrix::SparseLu] {
             let mut f = Oscillator {
                 fail_after: Some(1.0),
                 panic_after: None,
@@ -1412,7 +1405,7 @@ mod tests {
             0.0,
             &[1.0, 0.0, 1.0],
             &[0.0, -1.0, 0.0],
-            &osc_settings(LinearSolver::SparseLu),
+            &osc_settings(IdaMatrix::SparseLu),
             &OutputMode::Times(vec![1.0]),
             &mut |_, _, _| true,
         )
@@ -1429,7 +1422,7 @@ mod tests {
         };
         let settings = IdaSettings {
             max_steps: 5,
-            ..osc_settings(LinearSolver::SparseLu)
+            ..osc_settings(IdaMatrix::SparseLu)
         };
         let err = integrate(
             &mut f,
@@ -1478,7 +1471,7 @@ mod tests {
 
     #[test]
     fn calc_ic_fixes_inconsistent_algebraic_value() {
-        for solver in [LinearSolver::Dense, LinearSolver::SparseLu] {
+        for solver in [IdaMatrix::Dense, IdaMatrix::SparseLu] {
             let mut f = Oscillator {
                 fail_after: None,
                 panic_after: None,

@@ -15,7 +15,7 @@ use std::sync::Arc;
 use crate::hash::HashMap;
 use crate::model::EquationText;
 
-use crate::codegen::dae::{DaeSpec, Row, compile_dae};
+use crate::codegen::dae::{DaeSpec, ResidualRow, compile_dae};
 use crate::expr::{Id, IdIndex, Node};
 use crate::simplify::SimplifiedSystem;
 use crate::simplify::causalize::{
@@ -281,10 +281,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .map(|&e| eqs[e].1.to_string())
             .collect(),
     })?;
-    let rows: Vec<Row> = schedule
+    let rows: Vec<ResidualRow> = schedule
         .residuals
         .iter()
-        .map(|&(r, _)| Row::Expr(r))
+        .map(|&(residual, equation)| ResidualRow::Equation { residual, equation })
         .collect();
     let n_unknowns = unknowns.len();
     let observed_names = Arc::new(crate::names::NameIndex::lazy(move || {

@@ -20,6 +20,6 @@ mod solution;
 pub use builder::ProblemBuilder;
 pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
-pub use options::{LinearSolverChoice, SolverOptions};
+pub use options::{LinearSolver, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
 pub use solution::{Segment, Solution};

@@ -4,7 +4,7 @@ use crate::names::number;
 
 /// Which linear solver IDA's Newton iteration uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum LinearSolverChoice {
+pub enum LinearSolver {
     /// Dense for up to 24 unknowns, [`Sparse`](Self::Sparse) above (the default).
     #[default]
     Auto,
@@ -46,8 +46,8 @@ pub struct SolverOptions {
     /// Leave algebraic unknowns out of the local error test, as `IDASetSuppressAlg`
     /// (default true).
     pub suppress_alg: bool,
-    /// The linear solver (default [`LinearSolverChoice::Auto`]).
-    pub linear_solver: LinearSolverChoice,
+    /// The linear solver (default [`LinearSolver::Auto`]).
+    pub linear_solver: LinearSolver,
     /// Solve the algebraic unknowns of every reported point again from the purely
     /// algebraic equations (loop closures, rod lengths) by Newton, with the states as
     /// reported, so constraints hold to round-off at the outputs rather than to the
@@ -74,7 +74,7 @@ impl Default for SolverOptions {
             max_steps: 500_000,
             max_points: 500_000,
             suppress_alg: true,
-            linear_solver: LinearSolverChoice::Auto,
+            linear_solver: LinearSolver::Auto,
             project_outputs: true,
             specialize_parameters: true,
         }

@@ -13,9 +13,9 @@ use crate::simplify::SimplifiedSystem;
 use super::dynamic::{self, Observer};
 use super::error::{InitError, SolveError};
 use super::ida::IdaStats;
-use super::ida::{self, DaeFunctions, EvalError, IdaSettings, LinearSolver, OutputMode};
+use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
-use super::options::{LinearSolverChoice, SolverOptions};
+use super::options::{LinearSolver, SolverOptions};
 use super::solution::{Segment, Solution, SolutionParts};
 
 /// What the initialization did.
@@ -837,16 +837,14 @@ impl<'a> DaeProblem<'a> {
             &sys.compiled
         };
         let n = u0.len();
-        let (linear_solver, extended) = match options.linear_solver {
-            LinearSolverChoice::Auto if n <= 24 => (LinearSolver::Dense, false),
-            LinearSolverChoice::Auto | LinearSolverChoice::Sparse => {
-                (LinearSolver::SparseLu, c.extended().is_some())
+        let (matrix, extended) = match options.linear_solver {
+            LinearSolver::Auto if n <= 24 => (IdaMatrix::Dense, false),
+            LinearSolver::Auto | LinearSolver::Sparse => {
+                (IdaMatrix::SparseLu, c.extended().is_some())
             }
-            LinearSolverChoice::SparsePlain => (LinearSolver::SparseLu, false),
-            LinearSolverChoice::Dense => (LinearSolver::Dense, false),
-            LinearSolverChoice::DenseDifferenceQuotient => {
-                (LinearSolver::DenseDifferenceQuotient, false)
-            }
+            LinearSolver::SparsePlain => (IdaMatrix::SparseLu, false),
+            LinearSolver::Dense => (IdaMatrix::Dense, false),
+            LinearSolver::DenseDifferenceQuotient => (IdaMatrix::DenseDifferenceQuotient, false),
         };
         let settings = IdaSettings {
             rtol: options.rtol,
@@ -857,7 +855,7 @@ impl<'a> DaeProblem<'a> {
             max_steps: options.max_steps,
             id: sys.mass_matrix_diagonal.clone(),
             suppress_alg: options.suppress_alg,
-            linear_solver,
+            matrix,
             calc_ic: false,
         };
         let output = match output_times {
