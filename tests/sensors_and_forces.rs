@@ -922,7 +922,14 @@ fn damper_along_the_line_decays_exponentially() {
     let p = [0.2, -0.1, 0.3];
     let e = [2.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0];
     let (s0, u0) = (0.5, 1.5);
-    let model = body_on_line_force(&Damper { d }, p, m);
+    let model = body_on_line_force(
+        &Damper {
+            d,
+            ..Default::default()
+        },
+        p,
+        m,
+    );
     let sol = simulate(
         &model,
         &line_start(add(p, scale(e, s0)), scale(e, u0)),
