@@ -20,7 +20,9 @@ use multibody::forces::{
 use multibody::joints::Revolute;
 use multibody::parts::{Body, BodyCylinder, Fixed, FixedRotation, OrientationStates};
 use multibody::prelude::*;
-use multibody::sensors::{RelativePosition, RelativeVelocity};
+use multibody::sensors::{
+    AbsolutePosition, AbsoluteVelocity, RelativePosition, RelativeVelocity, ResolveInA,
+};
 use multibody::world::World;
 
 type V3 = [f64; 3];
@@ -313,14 +315,15 @@ fn torques_resolved_in_frame_b_of_spinning_bodies() {
 // Relative sensors resolved in frame_resolve.
 
 /// RelativePosition and RelativeVelocity from body p to body q, resolved in the world
-/// and in `observer.frame_a`, an isotropic free body spinning at w_o from the world's
+/// and in `observer.frame_a`, and AbsolutePosition and AbsoluteVelocity of q resolved
+/// in `observer.frame_a` (R_o(t)' q(t), R_o(t)' v_q), an isotropic free body spinning at w_o from the world's
 /// orientation (torque free, so about a fixed axis: R_o(t) = rot(w_o, |w_o| t)). No
 /// gravity and no forces: p (not turning) and q move uniformly, so
 /// d = q0 - p0 + (v_q - v_p) t and, p not turning, v_rel = v_q - v_p. The sensors give
 /// d and v_rel in the world and R_o(t)' d and R_o(t)' v_rel in the observer; a rotation
 /// the wrong way round (or frozen at t = 0) misses by |d| |w_o| t.
 #[test]
-fn relative_sensors_resolved_in_a_spinning_frame() {
+fn sensors_resolved_in_a_spinning_frame() {
     let w_o: V3 = [0.4, -0.8, 1.2];
     let (p0, q0): (V3, V3) = ([0.1, 0.2, 0.3], [1.0, -0.5, 0.4]);
     let (vp, vq): (V3, V3) = ([0.3, 0.0, -0.2], [-0.1, 0.6, 0.2]);
@@ -344,6 +347,12 @@ fn relative_sensors_resolved_in_a_spinning_frame() {
         connect(vel_o.frame_b, q.frame_a);
         connect(pos_o.frame_resolve, observer.frame_a);
         connect(vel_o.frame_resolve, observer.frame_a);
+        abs_pos_o = AbsolutePosition { resolve_in: ResolveInA::FrameResolve };
+        abs_vel_o = AbsoluteVelocity { resolve_in: ResolveInA::FrameResolve };
+        connect(abs_pos_o.frame_a, q.frame_a);
+        connect(abs_vel_o.frame_a, q.frame_a);
+        connect(abs_pos_o.frame_resolve, observer.frame_a);
+        connect(abs_vel_o.frame_resolve, observer.frame_a);
     }
     .into_system();
     let mut start: Vec<(String, f64)> = Vec::new();
@@ -360,6 +369,7 @@ fn relative_sensors_resolved_in_a_spinning_frame() {
     let t_o = rotation(&sol, "observer.frame_a");
     let (rw, ro) = (vector(&sol, "pos_w.r_rel"), vector(&sol, "pos_o.r_rel"));
     let (vw, vo) = (vector(&sol, "vel_w.v_rel"), vector(&sol, "vel_o.v_rel"));
+    let (aro, avo) = (vector(&sol, "abs_pos_o.r"), vector(&sol, "abs_vel_o.v"));
     let v_rel: V3 = std::array::from_fn(|i| vq[i] - vp[i]);
     let tol = 1e-7;
     for (k, &t) in sol.t().iter().enumerate() {
@@ -370,6 +380,9 @@ fn relative_sensors_resolved_in_a_spinning_frame() {
         assert_vec("pos_o.r_rel", t, ro[k], mv(&tr(&r_o), d), tol);
         assert_vec("vel_w.v_rel", t, vw[k], v_rel, tol);
         assert_vec("vel_o.v_rel", t, vo[k], mv(&tr(&r_o), v_rel), tol);
+        let q_t: V3 = std::array::from_fn(|i| q0[i] + vq[i] * t);
+        assert_vec("abs_pos_o.r", t, aro[k], mv(&tr(&r_o), q_t), tol);
+        assert_vec("abs_vel_o.v", t, avo[k], mv(&tr(&r_o), vq), tol);
     }
     // The observer turned far (about 4.5 rad), so a frozen rotation would show.
     assert!(norm(w_o) * 3.0 > 4.0);

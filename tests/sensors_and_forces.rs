@@ -24,7 +24,7 @@ use multibody::parts::{
 use multibody::prelude::*;
 use multibody::sensors::{
     AbsolutePosition, AbsoluteVelocity, CutForce, CutTorque, Power, RelativeAngles,
-    RelativePosition, RelativeVelocity, ResolveIn,
+    RelativePosition, RelativeVelocity, ResolveIn, ResolveInA,
 };
 use multibody::world::World;
 
@@ -214,9 +214,9 @@ fn position_velocity_and_angle_sensors_on_a_three_joint_chain() {
         connect(j1.frame_b, relvel_b.frame_a);
         connect(j3.frame_b, relvel_b.frame_b);
         abspos = AbsolutePosition::default();
-        abspos_w = AbsolutePosition { resolve_in_world: true };
+        abspos_w = AbsolutePosition { resolve_in: ResolveInA::World };
         absvel = AbsoluteVelocity::default();
-        absvel_w = AbsoluteVelocity { resolve_in_world: true };
+        absvel_w = AbsoluteVelocity { resolve_in: ResolveInA::World };
         connect(j3.frame_b, abspos.frame_a);
         connect(j3.frame_b, abspos_w.frame_a);
         connect(j3.frame_b, absvel.frame_a);
