@@ -108,7 +108,7 @@ component! {
     }
 }
 
-/// The default of [`RealExpression3::y`]: zero.
+/// The default of [`RealExpression3::expression`]: zero.
 fn zero3(_time: Expr) -> Vec3 {
     Vec3::zero()
 }
