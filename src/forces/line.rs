@@ -7,7 +7,8 @@ use crate::prelude::*;
 component! {
     /// The geometry of a line force between two frames (MSL `LineForceBase` and
     /// `PartialLineForce`): the force `f` acts along the line between the frames; `f > 0`
-    /// is tension (it pulls the frames towards each other). No torques act on the frames.
+    /// is tension (it pulls the frames towards each other). No torques act on the frames
+    /// (unless one is a root, below).
     ///
     /// A line force relates no orientations, so a frame where only line forces meet (the
     /// junction of springs in series) has no orientation: `fixed_rotation_at_frame_a`

@@ -6,9 +6,11 @@
 //! the vector is resolved in the frame connected there, which receives no force or
 //! torque; it must be connected, or its orientation is not determined (an error naming
 //! `frame_resolve`). With any other choice `frame_resolve` is fixed parallel to the
-//! world at its origin (MSL `Interfaces.ZeroPosition`) and must stay unconnected:
-//! connecting it fixes whatever it is connected to, which our graph reports as two
-//! roots in one mechanism.
+//! world at its origin (MSL `Interfaces.ZeroPosition`) and must stay unconnected
+//! (in MSL the connector does not exist then): connected to a mechanism fixed in the
+//! world it is reported as a second root of that mechanism, but connected to a free
+//! mechanism it would fix it at the world's origin, which nothing can detect (our
+//! connectors always exist and components cannot see whether they are connected).
 
 /// The frame a vector is resolved in, for components between two frames (MSL
 /// `ResolveInFrameAB`).
