@@ -233,7 +233,7 @@ fn a_box_of_zero_length_names_the_box() {
         Phase::Model,
         &[
             "MultiBody.Parts.BodyBox `part`",
-            "length |r| must not be zero",
+            "`length_direction` = [0.0, 0.0, 0.0] must be a finite, non-zero vector",
         ],
     );
 }
@@ -249,7 +249,7 @@ fn a_cylinder_of_zero_length_names_the_cylinder() {
         Phase::Model,
         &[
             "MultiBody.Parts.BodyCylinder `part`",
-            "length |r| must not be zero",
+            "`length_direction` = [0.0, 0.0, 0.0] must be a finite, non-zero vector",
         ],
     );
 }
@@ -264,7 +264,7 @@ fn a_box_of_negative_width_is_rejected() {
     assert_err(
         run_default(&m),
         Phase::Model,
-        &["`part`", "width -0.1", "must be positive"],
+        &["`part`", "`width` = -0.1 must be positive"],
     );
 }
 
@@ -279,7 +279,7 @@ fn a_tube_wider_inside_than_outside_is_rejected() {
     assert_err(
         run_default(&m),
         Phase::Model,
-        &["`part`", "inner diameter 0.2", "diameter 0.1"],
+        &["`part`", "`inner_diameter` = 0.2", "diameter = 0.1"],
     );
 }
 
@@ -290,7 +290,11 @@ fn a_box_of_zero_density_is_rejected() {
         density: 0.0,
         ..Default::default()
     });
-    assert_err(run_default(&m), Phase::Model, &["`part`", "density 0"]);
+    assert_err(
+        run_default(&m),
+        Phase::Model,
+        &["`part`", "`density` = 0 must be positive"],
+    );
 }
 
 #[test]

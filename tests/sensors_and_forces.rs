@@ -13,9 +13,9 @@
 mod mechanics;
 
 use mechanics::{MassProps, body_energy, rotation, vector};
-use multibody::blocks::RealOutput3;
+use multibody::blocks::Constant3;
 use multibody::forces::{
-    Damper, Force, Spring, SpringDamperParallel, Torque, WorldForce, WorldTorque,
+    Damper, Force, ResolveInB, Spring, SpringDamperParallel, Torque, WorldForce, WorldTorque,
 };
 use multibody::joints::Revolute;
 use multibody::parts::{
@@ -24,25 +24,11 @@ use multibody::parts::{
 use multibody::prelude::*;
 use multibody::sensors::{
     AbsolutePosition, AbsoluteVelocity, CutForce, CutTorque, Power, RelativeAngles,
-    RelativePosition, RelativeVelocity, ResolveIn,
+    RelativePosition, RelativeVelocity, ResolveIn, ResolveInA,
 };
 use multibody::world::World;
 
 const G: f64 = 9.80665;
-
-component! {
-    /// A constant vector signal (the three-component `Blocks.Sources.Constant`), to drive
-    /// the vector inputs of the signal forces.
-    pub struct Constant3 {
-        /// The value of the output.
-        parameter k: [f64; 3] = [0.0, 0.0, 0.0];
-        /// Output.
-        connector y: RealOutput3;
-        equation {
-            y = k;
-        }
-    }
-}
 
 // ---------------------------------------------------------------------------------------
 // Small linear algebra for the references.
@@ -228,9 +214,9 @@ fn position_velocity_and_angle_sensors_on_a_three_joint_chain() {
         connect(j1.frame_b, relvel_b.frame_a);
         connect(j3.frame_b, relvel_b.frame_b);
         abspos = AbsolutePosition::default();
-        abspos_w = AbsolutePosition { resolve_in_world: true };
+        abspos_w = AbsolutePosition { resolve_in: ResolveInA::World };
         absvel = AbsoluteVelocity::default();
-        absvel_w = AbsoluteVelocity { resolve_in_world: true };
+        absvel_w = AbsoluteVelocity { resolve_in: ResolveInA::World };
         connect(j3.frame_b, abspos.frame_a);
         connect(j3.frame_b, abspos_w.frame_a);
         connect(j3.frame_b, absvel.frame_a);
@@ -502,8 +488,8 @@ fn power_of_world_force_and_torque_on_a_pendulum() {
 /// - `world_body` (quaternion states, tumbling at w0): a world-resolved force F, so
 ///   r(t) = r0 + v0 t + (F / m + g) t^2 / 2 whatever its rotation;
 /// - `spin_body` (Cardan states), turning about z at w0 (torque free, so the turn
-///   stays: phi_3 = w0 t), with a force Fb fixed in the body (`resolve_in_world =
-///   false`): in the world F(t) = Rz(w0 t) Fb, and integrating twice
+///   stays: phi_3 = w0 t), with a force Fb fixed in the body (`resolve_in =
+///   FrameB`): in the world F(t) = Rz(w0 t) Fb, and integrating twice
 ///   x = x0 + vx t + (Fb_x (1 - cos) / w0^2 - Fb_y (t / w0 - sin / w0^2)) / m,
 ///   y = y0 + vy t + (Fb_x (t / w0 - sin / w0^2) + Fb_y (1 - cos) / w0^2) / m - g t^2 / 2,
 ///   z = z0 + vz t + Fb_z t^2 / (2 m), with cos, sin of w0 t.
@@ -524,7 +510,7 @@ fn world_force_accelerates_free_bodies_in_closed_form() {
         connect(f_world.frame_b, world_body.frame_a);
         connect(f_world_value.y, f_world.force);
         spin_body = Body { m: m2 };
-        f_body = WorldForce { resolve_in_world: false };
+        f_body = WorldForce { resolve_in: ResolveInB::FrameB };
         f_body_value = Constant3 { k: fb };
         connect(f_body.frame_b, spin_body.frame_a);
         connect(f_body_value.y, f_body.force);
@@ -584,7 +570,7 @@ fn world_force_accelerates_free_bodies_in_closed_form() {
 /// frame where tau is constant:
 /// - `world_body`, torque tau fixed in the world: the world-resolved angular velocity is
 ///   w0 + tau t / J;
-/// - `body_body`, torque tau_b fixed in the body (`resolve_in_world = false`): the
+/// - `body_body`, torque tau_b fixed in the body (`resolve_in = FrameB`): the
 ///   body-resolved angular velocity w_a is w0 + tau_b t / J.
 ///
 /// Both spin at 2 rad/s about z from the start, so a torque resolved in the wrong frame
@@ -606,7 +592,7 @@ fn world_torque_spins_up_isotropic_bodies_in_closed_form() {
         connect(t_world_value.y, t_world.torque);
         body_body = Body { I_11: j2, I_22: j2, I_33: j2,
                            orientation_states: OrientationStates::Quaternion };
-        t_body = WorldTorque { resolve_in_world: false };
+        t_body = WorldTorque { resolve_in: ResolveInB::FrameB };
         t_body_value = Constant3 { k: tau_b };
         connect(t_body.frame_b, body_body.frame_a);
         connect(t_body_value.y, t_body.torque);
@@ -829,6 +815,7 @@ fn torque_between_two_free_bodies_in_closed_form() {
                         tol,
                     );
                 }
+                ResolveIn::FrameResolve => unreachable!("not among the cases"),
             }
             let momentum = add(scale(wa_world, j_a), scale(wb_world, j_b));
             assert_vec(&what("angular momentum"), t, momentum, momentum0, tol);
@@ -922,7 +909,14 @@ fn damper_along_the_line_decays_exponentially() {
     let p = [0.2, -0.1, 0.3];
     let e = [2.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0];
     let (s0, u0) = (0.5, 1.5);
-    let model = body_on_line_force(&Damper { d }, p, m);
+    let model = body_on_line_force(
+        &Damper {
+            d,
+            ..Default::default()
+        },
+        p,
+        m,
+    );
     let sol = simulate(
         &model,
         &line_start(add(p, scale(e, s0)), scale(e, u0)),

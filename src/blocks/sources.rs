@@ -92,3 +92,40 @@ component! {
         }
     }
 }
+
+component! {
+    /// A constant vector signal (MSL `Blocks.Sources.Constant` three times, as MSL feeds
+    /// the vector inputs of the 3-D forces), for inputs such as `RealInput3`.
+    #[type_name = "Blocks.Constant3"]
+    pub struct Constant3 {
+        /// The value of the output (unit of the input it feeds).
+        parameter k: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Output.
+        connector y: RealOutput3;
+        equation {
+            y = k;
+        }
+    }
+}
+
+/// The default of [`RealExpression3::expression`]: zero.
+fn zero3(_time: Expr) -> Vec3 {
+    Vec3::zero()
+}
+
+component! {
+    /// A vector signal given by an expression of time (MSL `Blocks.Sources.RealExpression`
+    /// three times): `y = expression(time)`, e.g.
+    /// `RealExpression3 { expression: |t| Vec3::new(sin(t), 0.0, 2.0 * t) }`. The
+    /// function is called once, when the model is built, with the symbol `time`.
+    #[type_name = "Blocks.RealExpression3"]
+    pub struct RealExpression3 {
+        /// The output as a function of the symbol `time` (unit of the input it feeds).
+        structural expression: fn(Expr) -> Vec3 = zero3;
+        /// Output.
+        connector y: RealOutput3;
+        equation {
+            y = expression(time);
+        }
+    }
+}

@@ -3,8 +3,10 @@
 
 mod body;
 mod fixed;
+mod mass_properties;
 mod shapes;
 
 pub use body::*;
 pub use fixed::*;
+pub use mass_properties::MassProperties;
 pub use shapes::*;

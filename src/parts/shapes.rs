@@ -4,81 +4,13 @@
 
 use super::body::{Body, OrientationStates};
 use super::fixed::FixedTranslation;
-use crate::frames::t_from_nxy;
+use super::mass_properties::{
+    MassProperties, Placement, box_mass_properties, cylinder_mass_properties, placement_checks,
+    positive,
+};
 use crate::interfaces::Frame;
-use crate::numeric::norm;
+use crate::numeric::{norm, sub};
 use crate::prelude::*;
-
-/// Mass properties computed from a shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MassProperties {
-    /// Mass \[kg\].
-    pub m: f64,
-    /// Centre of mass, resolved in `frame_a` \[m\].
-    pub r_cm: [f64; 3],
-    /// Inertia about the centre of mass, resolved in `frame_a` \[kg.m2\].
-    pub inertia: [[f64; 3]; 3],
-}
-
-/// `T' D T` for a diagonal `D`: the inertia of a shape whose axes are the rows of `T`.
-fn rotate_inertia(t: [[f64; 3]; 3], d: [f64; 3]) -> [[f64; 3]; 3] {
-    let mut out = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            out[i][j] = (0..3).map(|k| t[k][i] * d[k] * t[k][j]).sum();
-        }
-    }
-    out
-}
-
-/// Mass properties of a box from `frame_a` along `r` (MSL `BodyBox` rules): length
-/// `|r|`, `width` and `height` across it (`width_direction` sets the width axis), an
-/// inner box hollowing it out, and a density.
-pub fn box_mass_properties(
-    r: [f64; 3],
-    width: f64,
-    height: f64,
-    inner_width: f64,
-    inner_height: f64,
-    width_direction: [f64; 3],
-    density: f64,
-) -> MassProperties {
-    let l = norm(r);
-    let (w, h, wi, hi) = (width, height, inner_width, inner_height);
-    let mo = density * l * w * h;
-    let mi = density * l * wi * hi;
-    let d = [
-        (mo * (w * w + h * h) - mi * (wi * wi + hi * hi)) / 12.0,
-        (mo * (l * l + h * h) - mi * (l * l + hi * hi)) / 12.0,
-        (mo * (l * l + w * w) - mi * (l * l + wi * wi)) / 12.0,
-    ];
-    let t = t_from_nxy(r, width_direction);
-    MassProperties {
-        m: mo - mi,
-        r_cm: [r[0] / 2.0, r[1] / 2.0, r[2] / 2.0],
-        inertia: rotate_inertia(t, d),
-    }
-}
-
-/// Mass properties of a cylinder from `frame_a` along `r` (MSL `BodyCylinder` rules).
-pub fn cylinder_mass_properties(
-    r: [f64; 3],
-    diameter: f64,
-    inner_diameter: f64,
-    density: f64,
-) -> MassProperties {
-    let l = norm(r);
-    let (ro, ri) = (diameter / 2.0, inner_diameter / 2.0);
-    let mo = density * std::f64::consts::PI * l * ro * ro;
-    let mi = density * std::f64::consts::PI * l * ri * ri;
-    let i22 = (mo * (l * l + 3.0 * ro * ro) - mi * (l * l + 3.0 * ri * ri)) / 12.0;
-    let t = t_from_nxy(r, [0.0, 1.0, 0.0]);
-    MassProperties {
-        m: mo - mi,
-        r_cm: [r[0] / 2.0, r[1] / 2.0, r[2] / 2.0],
-        inertia: rotate_inertia(t, [(mo * ro * ro - mi * ri * ri) / 2.0, i22, i22]),
-    }
-}
 
 /// The [`Body`] with given mass properties.
 fn body_of(p: MassProperties, states: OrientationStates) -> Body {
@@ -148,20 +80,32 @@ component! {
 }
 
 component! {
-    /// A box from `frame_a` to `frame_b` = `frame_a + r` whose mass and inertia follow
-    /// from its size and density (MSL `BodyBox`).
+    /// A box whose mass and inertia follow from its size and density (MSL `BodyBox`),
+    /// between `frame_a` and `frame_b` = `frame_a + r`. The box starts at `r_shape` and
+    /// extends `length` along `length_direction` (by default from `frame_a` to
+    /// `frame_b`); its centre of mass is at `r_shape + e length / 2`, `e` the unit
+    /// length direction. As in MSL, the principal axes of its inertia are `r` and
+    /// `width_direction`, whatever `length_direction` is.
     #[type_name = "MultiBody.Parts.BodyBox"]
     pub struct BodyBox {
-        /// Vector from `frame_a` to `frame_b`, resolved in `frame_a`; the box's length
-        /// direction \[m\].
+        /// Vector from `frame_a` to `frame_b`, resolved in `frame_a` \[m\] (MSL's
+        /// start value).
         structural r: [f64; 3] = [0.1, 0.0, 0.0];
-        /// Width \[m\]; `None` is `|r|/20`.
+        /// Vector from `frame_a` to the box's origin, resolved in `frame_a` \[m\].
+        structural r_shape: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Direction of the box's length, resolved in `frame_a` (any non-zero length);
+        /// `None` is `r - r_shape`.
+        structural length_direction: Option<[f64; 3]> = None;
+        /// Length of the box \[m\]; `None` is `|r - r_shape|`.
+        structural length: Option<f64> = None;
+        /// Width \[m\]; `None` is `length/20`.
         structural width: Option<f64> = None;
         /// Height \[m\]; `None` is the width.
         structural height: Option<f64> = None;
-        /// Width of the inner cut-out \[m\].
+        /// Width of the inner cut-out, `0 <= inner_width <= width` \[m\].
         structural inner_width: f64 = 0.0;
-        /// Height of the inner cut-out \[m\]; `None` is the inner width.
+        /// Height of the inner cut-out, `0 <= inner_height <= height` \[m\]; `None` is
+        /// the inner width.
         structural inner_height: Option<f64> = None;
         /// Direction of the width, resolved in `frame_a`.
         structural width_direction: [f64; 3] = [0.0, 1.0, 0.0];
@@ -180,17 +124,9 @@ component! {
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {
-            assert(norm(r) > 0.0, "the box's length |r| must not be zero");
-            let (w, h) = self.outer_size();
-            assert(
-                w > 0.0 && h > 0.0,
-                format!("the box's width {w} and height {h} must be positive")
-            );
-            assert(
-                inner_width >= 0.0 && inner_width < w && self.inner_height.unwrap_or(inner_width) < h,
-                "the inner box must be smaller than the box"
-            );
-            assert(density > 0.0, format!("the density {density} must be positive"));
+            for (holds, message) in self.checks() {
+                assert(holds, message);
+            }
             connect(frame_a, translation.frame_a);
             connect(frame_b, translation.frame_b);
             connect(frame_a, body.frame_a);
@@ -199,21 +135,65 @@ component! {
 }
 
 impl BodyBox {
-    /// Width and height (their defaults: `|r|/20` and the width).
-    fn outer_size(&self) -> (f64, f64) {
-        let w = self.width.unwrap_or(norm(self.r) / 20.0);
-        (w, self.height.unwrap_or(w))
+    /// Where the box lies, with MSL's defaults filled in.
+    fn placement(&self) -> Placement {
+        let d = sub(self.r, self.r_shape);
+        Placement {
+            r: self.r,
+            r_shape: self.r_shape,
+            length_direction: self.length_direction.unwrap_or(d),
+            length: self.length.unwrap_or(norm(d)),
+        }
     }
 
-    /// The box's mass, centre of mass and inertia.
-    pub fn mass_properties(&self) -> MassProperties {
-        let (w, h) = self.outer_size();
-        box_mass_properties(
-            self.r,
-            w,
-            h,
+    /// Width and height (defaults: `length/20` and the width).
+    fn outer_size(&self) -> [f64; 2] {
+        let w = self.width.unwrap_or(self.placement().length / 20.0);
+        [w, self.height.unwrap_or(w)]
+    }
+
+    /// Inner width and height (default of the height: the inner width).
+    fn inner_size(&self) -> [f64; 2] {
+        [
             self.inner_width,
             self.inner_height.unwrap_or(self.inner_width),
+        ]
+    }
+
+    /// The parameter checks, as `(holds, message)` (MSL's asserts and ours).
+    fn checks(&self) -> Vec<(bool, String)> {
+        let ([w, h], [wi, hi]) = (self.outer_size(), self.inner_size());
+        let mut checks = placement_checks(&self.placement());
+        checks.extend([
+            positive("width", w),
+            positive("height", h),
+            (
+                (0.0..=w).contains(&wi),
+                format!("parameter `inner_width` = {wi} must be in [0, width = {w}]"),
+            ),
+            (
+                (0.0..=h).contains(&hi),
+                format!("parameter `inner_height` = {hi} must be in [0, height = {h}]"),
+            ),
+            (
+                self.width_direction.iter().all(|x| x.is_finite()),
+                format!(
+                    "parameter `width_direction` = {:?} must be finite",
+                    self.width_direction
+                ),
+            ),
+            positive("density", self.density),
+        ]);
+        checks
+    }
+
+    /// The box's mass, centre of mass and inertia (MSL `BodyBox`'s `m`, `r_CM`, `I`);
+    /// meaningless (NaN) for parameters the component rejects.
+    pub fn mass_properties(&self) -> MassProperties {
+        box_mass_properties(
+            &self.placement(),
+            self.outer_size(),
+            self.inner_size(),
             self.width_direction,
             self.density,
         )
@@ -221,15 +201,26 @@ impl BodyBox {
 }
 
 component! {
-    /// A cylinder from `frame_a` to `frame_b` = `frame_a + r` whose mass and inertia
-    /// follow from its size and density (MSL `BodyCylinder`).
+    /// A cylinder whose mass and inertia follow from its size and density (MSL
+    /// `BodyCylinder`), between `frame_a` and `frame_b` = `frame_a + r`. The cylinder
+    /// starts at `r_shape` and extends `length` along `length_direction` (by default
+    /// from `frame_a` to `frame_b`); its centre of mass is at `r_shape + e length / 2`.
+    /// As in MSL, the axis of its inertia is `r`, whatever `length_direction` is.
     #[type_name = "MultiBody.Parts.BodyCylinder"]
     pub struct BodyCylinder {
-        /// Vector from `frame_a` to `frame_b`, resolved in `frame_a`; the axis \[m\].
+        /// Vector from `frame_a` to `frame_b`, resolved in `frame_a` \[m\] (MSL's
+        /// start value).
         structural r: [f64; 3] = [0.1, 0.0, 0.0];
-        /// Diameter \[m\]; `None` is `|r|/20`.
+        /// Vector from `frame_a` to the cylinder's origin, resolved in `frame_a` \[m\].
+        structural r_shape: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Direction of the cylinder's axis, resolved in `frame_a` (any non-zero
+        /// length); `None` is `r - r_shape`.
+        structural length_direction: Option<[f64; 3]> = None;
+        /// Length of the cylinder \[m\]; `None` is `|r - r_shape|`.
+        structural length: Option<f64> = None;
+        /// Diameter \[m\]; `None` is `length/20`.
         structural diameter: Option<f64> = None;
-        /// Inner diameter \[m\] (a tube).
+        /// Inner diameter (a tube), `0 <= inner_diameter < diameter` \[m\].
         structural inner_diameter: f64 = 0.0;
         /// Colour when rendered, RGB in 0..1 (MSL's body colour).
         structural color: [f64; 3] = crate::render::BODY_COLOR;
@@ -246,14 +237,9 @@ component! {
         /// The mass, at `frame_a`.
         component body: Body = body_of(self.mass_properties(), self.orientation_states);
         equation {
-            assert(norm(r) > 0.0, "the cylinder's length |r| must not be zero");
-            let d = self.diameter.unwrap_or(norm(r) / 20.0);
-            assert(d > 0.0, format!("the diameter {d} must be positive"));
-            assert(
-                inner_diameter >= 0.0 && inner_diameter < d,
-                format!("the inner diameter {inner_diameter} must be smaller than the diameter {d}")
-            );
-            assert(density > 0.0, format!("the density {density} must be positive"));
+            for (holds, message) in self.checks() {
+                assert(holds, message);
+            }
             connect(frame_a, translation.frame_a);
             connect(frame_b, translation.frame_b);
             connect(frame_a, body.frame_a);
@@ -262,9 +248,45 @@ component! {
 }
 
 impl BodyCylinder {
-    /// The cylinder's mass, centre of mass and inertia.
+    /// Where the cylinder lies, with MSL's defaults filled in.
+    fn placement(&self) -> Placement {
+        let d = sub(self.r, self.r_shape);
+        Placement {
+            r: self.r,
+            r_shape: self.r_shape,
+            length_direction: self.length_direction.unwrap_or(d),
+            length: self.length.unwrap_or(norm(d)),
+        }
+    }
+
+    /// The diameter (default `length/20`).
+    fn outer_diameter(&self) -> f64 {
+        self.diameter.unwrap_or(self.placement().length / 20.0)
+    }
+
+    /// The parameter checks, as `(holds, message)` (MSL's asserts and ours).
+    fn checks(&self) -> Vec<(bool, String)> {
+        let (d, di) = (self.outer_diameter(), self.inner_diameter);
+        let mut checks = placement_checks(&self.placement());
+        checks.extend([
+            positive("diameter", d),
+            (
+                di >= 0.0 && di < d,
+                format!("parameter `inner_diameter` = {di} must be in [0, diameter = {d})"),
+            ),
+            positive("density", self.density),
+        ]);
+        checks
+    }
+
+    /// The cylinder's mass, centre of mass and inertia (MSL `BodyCylinder`'s `m`,
+    /// `r_CM`, `I`); meaningless (NaN) for parameters the component rejects.
     pub fn mass_properties(&self) -> MassProperties {
-        let d = self.diameter.unwrap_or(norm(self.r) / 20.0);
-        cylinder_mass_properties(self.r, d, self.inner_diameter, self.density)
+        cylinder_mass_properties(
+            &self.placement(),
+            self.outer_diameter(),
+            self.inner_diameter,
+            self.density,
+        )
     }
 }

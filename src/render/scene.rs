@@ -30,6 +30,15 @@ fn scalar(sys: &System, name: &str) -> Option<f64> {
     param::<1>(sys, name).map(|v| v[0])
 }
 
+/// The length of a box or cylinder: `length`, by default `|r - r_shape|`.
+fn shape_length(sys: &System) -> f64 {
+    scalar(sys, "length").unwrap_or_else(|| {
+        let r = param::<3>(sys, "r").unwrap_or([0.0; 3]);
+        let r_shape = param::<3>(sys, "r_shape").unwrap_or([0.0; 3]);
+        norm(std::array::from_fn(|i| r[i] - r_shape[i]))
+    })
+}
+
 /// `path.local`, or `local` at the root.
 fn join(path: &str, local: &str) -> String {
     if path.is_empty() {
@@ -104,8 +113,7 @@ impl Scene {
                 (radius > 0.0).then_some((Geometry::Rod { a, b, radius }, color))
             }
             "Parts.BodyCylinder" => {
-                let r = param::<3>(sys, "r").map_or(0.0, norm);
-                let d = scalar(sys, "diameter").unwrap_or(r / 20.0);
+                let d = scalar(sys, "diameter").unwrap_or(shape_length(sys) / 20.0);
                 let (a, b) = (self.pos(sys, "frame_a"), self.pos(sys, "frame_b"));
                 Some((
                     Geometry::Rod {
@@ -117,8 +125,7 @@ impl Scene {
                 ))
             }
             "Parts.BodyBox" => {
-                let r = param::<3>(sys, "r").map_or(0.0, norm);
-                let width = scalar(sys, "width").unwrap_or(r / 20.0);
+                let width = scalar(sys, "width").unwrap_or(shape_length(sys) / 20.0);
                 let height = scalar(sys, "height").unwrap_or(width);
                 let width_dir = param::<3>(sys, "width_direction").unwrap_or([0.0, 1.0, 0.0]);
                 let (a, b) = (self.pos(sys, "frame_a"), self.pos(sys, "frame_b"));

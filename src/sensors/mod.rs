@@ -3,17 +3,17 @@
 
 use crate::blocks::{RealOutput, RealOutput3};
 use crate::frames::{
-    Vec3, axes_rotations_angles_expr, invalid_sequence, relative_rotation, resolve_relative,
-    resolve1, resolve2, usable_sequence, valid_sequence,
+    Vec3, axes_rotations_angles_expr, invalid_sequence, null_rotation, relative_rotation,
+    resolve_relative, resolve1, resolve2, usable_sequence, valid_sequence,
 };
 use crate::interfaces::Frame;
 use crate::prelude::*;
 
-pub use crate::forces::ResolveIn;
+pub use crate::forces::{ResolveIn, ResolveInA};
 
 component! {
     /// The position of `frame_b` relative to `frame_a` (MSL `Sensors.RelativePosition`),
-    /// resolved in `frame_a` by default.
+    /// resolved in `frame_a` by default, or in the frame connected to `frame_resolve`.
     #[type_name = "MultiBody.Sensors.RelativePosition"]
     pub struct RelativePosition {
         /// The frame the result is resolved in (MSL default: `frame_a`).
@@ -22,6 +22,9 @@ component! {
         connector frame_a: Frame;
         /// Second frame.
         connector frame_b: Frame;
+        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
+        /// it then; otherwise leave it unconnected).
+        connector frame_resolve: Frame;
         /// `frame_b.r_0 - frame_a.r_0`, resolved as chosen \[m\].
         connector r_rel: RealOutput3;
         equation {
@@ -30,18 +33,29 @@ component! {
                 ResolveIn::World => d,
                 ResolveIn::FrameA => resolve2(&frame_a.R, d),
                 ResolveIn::FrameB => resolve2(&frame_b.R, d),
+                ResolveIn::FrameResolve => resolve2(&frame_resolve.R, d),
             };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
             frame_b.f = Vec3::zero();
             frame_b.t = Vec3::zero();
+            if resolve_in == ResolveIn::FrameResolve {
+                frame_resolve.f = Vec3::zero();
+                frame_resolve.t = Vec3::zero();
+            } else {
+                root(frame_resolve.R);
+                frame_resolve.R = null_rotation();
+                frame_resolve.r_0 = Vec3::zero();
+            }
         }
     }
 }
 
 component! {
     /// The velocity of `frame_b` relative to `frame_a`: the derivative of the relative
-    /// position resolved in `frame_a` (MSL `Sensors.RelativeVelocity`).
+    /// position resolved in `frame_a` (MSL `Sensors.RelativeVelocity`), then resolved
+    /// as chosen (in `frame_a` by default, or in the frame connected to
+    /// `frame_resolve`).
     #[type_name = "MultiBody.Sensors.RelativeVelocity"]
     pub struct RelativeVelocity {
         /// The frame the result is resolved in (MSL default: `frame_a`).
@@ -50,6 +64,9 @@ component! {
         connector frame_a: Frame;
         /// Second frame.
         connector frame_b: Frame;
+        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
+        /// it then; otherwise leave it unconnected).
+        connector frame_resolve: Frame;
         /// Relative velocity, resolved as chosen \[m/s\].
         connector v_rel: RealOutput3;
         /// Relative position resolved in `frame_a` \[m\].
@@ -63,62 +80,94 @@ component! {
                 ResolveIn::World => resolve1(&frame_a.R, v_rel_a),
                 ResolveIn::FrameA => v_rel_a,
                 ResolveIn::FrameB => resolve_relative(v_rel_a, &frame_a.R, &frame_b.R),
+                ResolveIn::FrameResolve => {
+                    resolve_relative(v_rel_a, &frame_a.R, &frame_resolve.R)
+                }
             };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
             frame_b.f = Vec3::zero();
             frame_b.t = Vec3::zero();
+            if resolve_in == ResolveIn::FrameResolve {
+                frame_resolve.f = Vec3::zero();
+                frame_resolve.t = Vec3::zero();
+            } else {
+                root(frame_resolve.R);
+                frame_resolve.R = null_rotation();
+                frame_resolve.r_0 = Vec3::zero();
+            }
         }
     }
 }
 
 component! {
     /// The position of a frame (MSL `Sensors.AbsolutePosition`), resolved in the frame
-    /// itself by default.
+    /// itself by default, in the world, or in the frame connected to `frame_resolve`.
     #[type_name = "MultiBody.Sensors.AbsolutePosition"]
     pub struct AbsolutePosition {
-        /// Whether the result is resolved in the world (otherwise in `frame_a`, MSL
-        /// default).
-        structural resolve_in_world: bool = false;
+        /// The frame the result is resolved in (MSL default: `frame_a`).
+        structural resolve_in: ResolveInA = ResolveInA::FrameA;
         /// The frame.
         connector frame_a: Frame;
+        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
+        /// it then; otherwise leave it unconnected).
+        connector frame_resolve: Frame;
         /// Its position \[m\].
         connector r: RealOutput3;
         equation {
-            if resolve_in_world {
-                r = frame_a.r_0;
-            } else {
-                r = resolve2(&frame_a.R, frame_a.r_0);
-            }
+            r = match resolve_in {
+                ResolveInA::World => frame_a.r_0,
+                ResolveInA::FrameA => resolve2(&frame_a.R, frame_a.r_0),
+                ResolveInA::FrameResolve => resolve2(&frame_resolve.R, frame_a.r_0),
+            };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
+            if resolve_in == ResolveInA::FrameResolve {
+                frame_resolve.f = Vec3::zero();
+                frame_resolve.t = Vec3::zero();
+            } else {
+                root(frame_resolve.R);
+                frame_resolve.R = null_rotation();
+                frame_resolve.r_0 = Vec3::zero();
+            }
         }
     }
 }
 
 component! {
-    /// The velocity of a frame (MSL `Sensors.AbsoluteVelocity`), resolved in the frame
-    /// itself by default.
+    /// The velocity of a frame (MSL `Sensors.AbsoluteVelocity`): the derivative of its
+    /// world-resolved position, resolved in the frame itself by default, in the world,
+    /// or in the frame connected to `frame_resolve`.
     #[type_name = "MultiBody.Sensors.AbsoluteVelocity"]
     pub struct AbsoluteVelocity {
-        /// Whether the result is resolved in the world (otherwise in `frame_a`, MSL
-        /// default).
-        structural resolve_in_world: bool = false;
+        /// The frame the result is resolved in (MSL default: `frame_a`).
+        structural resolve_in: ResolveInA = ResolveInA::FrameA;
         /// The frame.
         connector frame_a: Frame;
+        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
+        /// it then; otherwise leave it unconnected).
+        connector frame_resolve: Frame;
         /// Its velocity \[m/s\].
         connector v: RealOutput3;
         /// Velocity resolved in world \[m/s\].
         variable v_0: Vec3;
         equation {
             v_0 = der(frame_a.r_0);
-            if resolve_in_world {
-                v = v_0;
-            } else {
-                v = resolve2(&frame_a.R, v_0);
-            }
+            v = match resolve_in {
+                ResolveInA::World => v_0,
+                ResolveInA::FrameA => resolve2(&frame_a.R, v_0),
+                ResolveInA::FrameResolve => resolve2(&frame_resolve.R, v_0),
+            };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
+            if resolve_in == ResolveInA::FrameResolve {
+                frame_resolve.f = Vec3::zero();
+                frame_resolve.t = Vec3::zero();
+            } else {
+                root(frame_resolve.R);
+                frame_resolve.R = null_rotation();
+                frame_resolve.r_0 = Vec3::zero();
+            }
         }
     }
 }
