@@ -109,7 +109,7 @@ fn simplify(name: &str, limits: LinearBlockLimits) -> SimplifiedSystem {
 
 fn loop_targets(ssys: &SimplifiedSystem) -> Vec<String> {
     let mut out = Vec::new();
-    for step in &ssys.schedule.steps {
+    for step in &ssys.sorted.schedule.steps {
         if let Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } = step {
             out.extend(targets.iter().map(|&t| ssys.leaf_name(t)));
         }
@@ -132,6 +132,7 @@ fn default_limits_solve_the_loop_inside_the_residual() {
     assert_eq!(ssys.mass_matrix_diagonal(), &[1.0]);
     // One dense solve for the single tearing variable.
     let dense: Vec<usize> = ssys
+        .sorted
         .schedule
         .steps
         .iter()
@@ -232,6 +233,7 @@ fn block_above_the_limits_is_solved_by_sparse_lu_inside() {
     // One sparse solve of the whole block: the structural non-zeros of the 3x3 matrix
     // are the 2 + 3 + 2 incidences of the three equations.
     let sparse: Vec<(usize, usize)> = ssys
+        .sorted
         .schedule
         .steps
         .iter()
@@ -273,6 +275,7 @@ fn pre_elimination_leaves_one_unknown_for_the_lu() {
         "{st}"
     );
     let solved: Vec<usize> = ssys
+        .sorted
         .schedule
         .steps
         .iter()
@@ -281,7 +284,7 @@ fn pre_elimination_leaves_one_unknown_for_the_lu() {
             _ => None,
         })
         .collect();
-    assert_eq!(solved, vec![1], "{:?}", ssys.schedule.steps);
+    assert_eq!(solved, vec![1], "{:?}", ssys.sorted.schedule.steps);
     assert_eq!(ssys.unknowns(), vec!["x"]);
     solve_and_check(&ssys);
 }

@@ -32,6 +32,7 @@ pub use causalize::{BlockKind, LinearBlockLimits};
 pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
 pub use reduce::Slot;
+use system::{DynamicSelection, ModelData, Reduction, Sorted};
 pub use system::{PhaseTimes, SimplifiedSystem, StateCandidates, Statistics};
 
 use crate::Error;
@@ -41,7 +42,7 @@ use crate::expr::Id;
 use crate::model::{EquationText, FlatOrigins, System, Variable, check_balance, flatten};
 use crate::structure::BipartiteGraph;
 
-use causalize::{Temporaries, causalize_graph};
+use causalize::{Schedule, Temporaries, causalize_graph};
 use reduce::{ReduceInput, reduce};
 
 /// Options of [`structural_simplify_with`].
@@ -128,9 +129,9 @@ pub fn structural_simplify_with(
     match simplify_flat(flat, options, Vec::new(), flatten_s)? {
         Simplified::Done(mut ssys) => {
             if options.dynamic_state_selection == DynamicStates::WhenNeeded
-                && !ssys.dynamic_candidates.is_empty()
+                && !ssys.dynamic.candidates.is_empty()
             {
-                ssys.dynamic_source = Some(Arc::new((model.clone(), options.clone())));
+                ssys.dynamic.source = Some(Arc::new((model.clone(), options.clone())));
             }
             Ok(*ssys)
         }
@@ -161,9 +162,10 @@ fn simplify_with_dynamic_states(
 /// The model simplified again with dynamic states for the groups its static selection
 /// found (see [`DynamicStates::WhenNeeded`]).
 pub(crate) fn dynamic_variant(ssys: &SimplifiedSystem) -> Option<Result<SimplifiedSystem, Error>> {
-    let (model, options) = &**ssys.dynamic_source.as_ref()?;
+    let (model, options) = &**ssys.dynamic.source.as_ref()?;
     let groups: Vec<reduce::DynamicCandidates> = ssys
-        .dynamic_candidates
+        .dynamic
+        .candidates
         .iter()
         .map(|g| g.candidates.clone())
         .collect();
@@ -197,8 +199,9 @@ enum Simplified {
     NeedsDynamicStates(Vec<reduce::DynamicCandidates>),
 }
 
-/// Stages 2 to 6 on a flat model: alias elimination, index reduction with state
-/// selection, causalization, code generation and the assembly of the result.
+/// Stages 2 to 7 on a flat model: alias elimination, index reduction with state
+/// selection, causalization, ordering of the unknowns, code generation and the
+/// statistics, assembled into the result.
 fn simplify_flat(
     stage: FlatStage,
     options: &SimplifyOptions,
@@ -211,27 +214,235 @@ fn simplify_flat(
     } = stage;
     let t1 = Instant::now();
     let name = flat.name.clone();
-    let flat_equations = flat.equations.len();
-    let flat_unknowns = flat.variables.len();
+    let flat_size = (flat.equations.len(), flat.variables.len());
 
-    let aliases = alias::eliminate_aliases(&mut flat);
+    let aliased = alias_stage(&mut flat);
+    // The variables and the equations' origins move into storage shared by the texts of
+    // all equations (no copy of an origin or a name per equation).
+    let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
+    let texts = FlatOrigins::new(
+        std::mem::take(&mut flat.equations),
+        variables.clone(),
+        flat.stores.clone(),
+    );
+    let equations: Vec<(Id, EquationText)> = aliased
+        .kept_equations
+        .iter()
+        .map(|&e| (texts.equations()[e].residual, EquationText::of(&texts, e)))
+        .collect();
+    let flat_names = crate::model::FlatNames {
+        variables: &variables,
+        parameters: &flat.parameters,
+    };
+    let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
+    let reduced = reduce(
+        ReduceInput {
+            arena: &mut flat.arena,
+            variables: &variables,
+            priority: &aliased.priority,
+            kept: &aliased.kept,
+            derivative_map: &aliased.aliases.derivative_map,
+            equations,
+            definitions: aliased.definitions,
+            angular_velocity: &aliased.angular_velocity,
+            show: &show,
+        },
+        &name,
+    )?;
+    if options.dynamic_state_selection == DynamicStates::Always
+        && dynamic.is_empty()
+        && !reduced.dynamic.is_empty()
+    {
+        return Ok(Simplified::NeedsDynamicStates(reduced.dynamic));
+    }
+
+    let default_params =
+        crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
+            .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
+    let causal = causalize_stage(
+        &mut flat.arena,
+        &flat.derivative_rules,
+        &default_params,
+        &reduced,
+        &aliased.priority,
+        options,
+    )
+    .map_err(|s| {
+        let name_of =
+            |&l: &Id| reduced.slots[reduced.slot_of.get(l).expect("a slot")].name(&variables);
+        SimplifyError::singular(
+            &name,
+            s.over_equations
+                .iter()
+                .map(|&e| {
+                    reduce::with_reduced_form(
+                        &reduced.equations[e].text.to_string(),
+                        &flat.arena,
+                        reduced.equations[e].residual,
+                        &show,
+                    )
+                })
+                .collect(),
+            s.over_unknowns.iter().map(name_of).collect(),
+            s.under_unknowns.iter().map(name_of).collect(),
+        )
+    })?;
+    let order = order_unknowns(&reduced, &causal.schedule);
+    let simplify_s = t1.elapsed().as_secs_f64();
+
+    // Code generation.
+    let t2 = Instant::now();
+    let (observed, observed_names) = observed_outputs(
+        &variables,
+        &aliased.aliases.replaced,
+        &aliased.aliases.derivative,
+        &reduced,
+    );
+    for group in &mut dynamic {
+        group.outputs = dynamic_outputs(group, &reduced, &order.index_of, variables.len());
+    }
+    // Groups whose static choice the solver watches (when the model has no dynamic
+    // states of its own).
+    let dynamic_candidates: Vec<dynamic_states::StaticGroup> = if dynamic.is_empty() {
+        reduced
+            .dynamic
+            .iter()
+            .filter_map(|g| static_group(g, &reduced, &order.index_of, variables.len()))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let compiled = compile_dae(
+        &mut flat.arena,
+        &DaeSpec {
+            steps: &causal.schedule.steps,
+            unknowns: &order.unknowns,
+            derivative_inputs: &order.derivative_inputs,
+            rows: &order.rows,
+            observed: &observed,
+            observed_names,
+            n_params: flat.parameters.len(),
+            names: &|id| {
+                reduced
+                    .slot_of
+                    .get(id)
+                    .map(|s| reduced.slots[s].name(&variables))
+                    .unwrap_or_else(|| format!("{id:?}"))
+            },
+        },
+    )
+    .map_err(|e| SimplifyError::Codegen {
+        model: name.clone(),
+        message: e.to_string(),
+    })?;
+    let times = PhaseTimes {
+        flatten_s,
+        simplify_s,
+        codegen_s: t2.elapsed().as_secs_f64(),
+    };
+
+    let statistics = statistics(
+        flat_size,
+        &aliased.aliases,
+        &reduced,
+        &causal.schedule,
+        &order,
+        times,
+    );
+    log::debug!("{statistics}");
+    let mut warnings = reduced.warnings.clone();
+    warnings.sort();
+    warnings.dedup();
+    let states = reduced.states.clone();
+    let starts = flat.starts.clone();
+    // The flat model's vectors move into the result (no copy of every name).
+    let crate::model::FlatSystem {
+        parameters,
+        parameter_values,
+        arena,
+        assertions,
+        ..
+    } = flat;
+    Ok(Simplified::Done(Box::new(SimplifiedSystem {
+        model: ModelData {
+            name,
+            arena: std::sync::Arc::new(arena),
+            variables,
+            parameters,
+            evaluated_parameters,
+            assertions,
+            parameter_values,
+            starts,
+        },
+        reduction: Reduction {
+            replaced: aliased.aliases.replaced,
+            slots: reduced.slots,
+            slot_of: reduced.slot_of,
+            var_diff: reduced.var_diff,
+            equations: reduced.equations,
+            initial_equations: aliased.initial_equations,
+            states,
+            never_tear: causal.never_tear,
+        },
+        sorted: Sorted {
+            unknowns: order.unknowns,
+            mass_matrix_diagonal: order.mass,
+            schedule: causal.schedule,
+            rows: order.rows,
+            next_temporary: causal.next_temporary,
+        },
+        compiled,
+        dynamic: DynamicSelection {
+            groups: dynamic,
+            candidates: dynamic_candidates,
+            source: None,
+            variant: std::sync::OnceLock::new(),
+        },
+        parameter_index: std::sync::OnceLock::new(),
+        unknown_index: std::sync::OnceLock::new(),
+        statistics,
+        warnings,
+    })))
+}
+
+/// The flat model after alias elimination, with what index reduction needs to know
+/// about its variables and equations.
+struct AliasStage {
+    aliases: alias::Aliases,
+    /// Per flat variable: whether it is kept (not an alias).
+    kept: Vec<bool>,
+    /// Per flat variable: its state priority.
+    priority: Vec<f64>,
+    /// Per flat variable: whether it is an angular velocity (what the derivative rules
+    /// contain, under the aliases).
+    angular_velocity: Vec<bool>,
+    /// The equations alias elimination kept (indices into the flat equations).
+    kept_equations: Vec<usize>,
+    /// Per kept equation: whether it defines a variable with a derivative rule (an
+    /// orientation matrix entry): such an equation is solved for it and never
+    /// differentiated.
+    definitions: Vec<bool>,
+    /// The initial equations under the same substitutions, with their texts.
+    initial_equations: Vec<(Id, String)>,
+}
+
+/// Stage 2: alias elimination.
+fn alias_stage(flat: &mut crate::model::FlatSystem) -> AliasStage {
+    let aliases = alias::eliminate_aliases(flat);
     let nv = flat.variables.len();
     let kept: Vec<bool> = aliases.replaced.iter().map(Option::is_none).collect();
     let priority: Vec<f64> = flat.variables.iter().map(|v| v.state_priority).collect();
-    // Equations that define a variable with a derivative rule (an orientation matrix
-    // entry) are solved for it and never differentiated.
     let mut has_rule = vec![false; nv];
     for &(x, _) in &flat.derivative_rules {
         has_rule[x as usize] = true;
     }
-    // Angular velocities: what the derivative rules contain, under the aliases.
     let angular_velocity: Vec<bool> = (0..nv)
         .map(|v| aliases.in_rules[v] && !has_rule[v])
         .collect();
-    let kept_eqs: Vec<usize> = (0..flat.equations.len())
+    let kept_equations: Vec<usize> = (0..flat.equations.len())
         .filter(|&e| !aliases.removed[e])
         .collect();
-    let definitions: Vec<bool> = kept_eqs
+    let definitions: Vec<bool> = kept_equations
         .iter()
         .map(|&e| {
             flat.equations[e]
@@ -239,8 +450,8 @@ fn simplify_flat(
                 .is_some_and(|v| has_rule[v as usize])
         })
         .collect();
-    // Initial equations under the same substitutions (the combined map is built only
-    // for a model that has some: it copies every alias).
+    // The combined map is built only for a model that has initial equations: it copies
+    // every alias.
     let mut initial_equations: Vec<(Id, String)> = Vec::new();
     if !flat.initial_equations.is_empty() {
         let mut full_map = aliases.map.clone();
@@ -255,46 +466,38 @@ fn simplify_flat(
             initial_equations.push((r, flat.describe(eq)));
         }
     }
-    // The variables and the equations' origins move into storage shared by the texts of
-    // all equations (no copy of an origin or a name per equation).
-    let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
-    let texts = FlatOrigins::new(
-        std::mem::take(&mut flat.equations),
-        variables.clone(),
-        flat.stores.clone(),
-    );
-    let equations: Vec<(Id, EquationText)> = kept_eqs
-        .iter()
-        .map(|&e| (texts.equations()[e].residual, EquationText::of(&texts, e)))
-        .collect();
-    let starts = flat.starts.clone();
-    let flat_names = crate::model::FlatNames {
-        variables: &variables,
-        parameters: &flat.parameters,
-    };
-    let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
-    let reduced = reduce(
-        ReduceInput {
-            arena: &mut flat.arena,
-            variables: &variables,
-            priority: &priority,
-            kept: &kept,
-            derivative_map: &aliases.derivative_map,
-            equations,
-            definitions,
-            angular_velocity: &angular_velocity,
-            show: &show,
-        },
-        &name,
-    )?;
-    if options.dynamic_state_selection == DynamicStates::Always
-        && dynamic.is_empty()
-        && !reduced.dynamic.is_empty()
-    {
-        return Ok(Simplified::NeedsDynamicStates(reduced.dynamic));
+    AliasStage {
+        aliases,
+        kept,
+        priority,
+        angular_velocity,
+        kept_equations,
+        definitions,
+        initial_equations,
     }
+}
 
-    // Sorting: every slot that is not a state is an unknown.
+/// The sorted and torn equations.
+struct CausalStage {
+    schedule: Schedule,
+    /// First variable index free for temporaries.
+    next_temporary: u32,
+    /// Leaves tearing never iterates on.
+    never_tear: HashSet<Id>,
+}
+
+/// Stage 4: causalization. Every slot that is not a state is an unknown; the equations
+/// are matched, sorted into blocks (BLT) and torn; a structurally singular system is
+/// the equations and unknowns that make it so. The default parameter values decide
+/// which coefficients may vanish.
+fn causalize_stage(
+    arena: &mut crate::expr::Arena,
+    derivative_rules: &[(u32, Id)],
+    default_params: &[f64],
+    reduced: &reduce::IndexReduced,
+    priority: &[f64],
+    options: &SimplifyOptions,
+) -> Result<CausalStage, causalize::Singular> {
     let state_set: HashSet<usize> = reduced.states.iter().copied().collect();
     let mut unknown_leaves: Vec<Id> = Vec::new();
     // The unknown each slot is (`usize::MAX` for states).
@@ -324,80 +527,72 @@ fn simplify_flat(
         );
         incidence.add_equation_from(&mut row);
     }
-    // Default parameter values decide which coefficients may vanish.
-    let default_params =
-        crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
-            .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
-    let never_tear: HashSet<Id> = flat
-        .derivative_rules
+    let never_tear: HashSet<Id> = derivative_rules
         .iter()
-        .map(|&(x, _)| flat.arena.var(x))
+        .map(|&(x, _)| arena.var(x))
         .collect();
-    // From the priorities read once above (not another pass over every variable).
+    // From the priorities read once (not another pass over every variable).
     let tear_priority: HashMap<Id, f64> = priority
         .iter()
         .enumerate()
         .filter(|&(_, &p)| p != 0.0)
-        .map(|(i, &p)| (flat.arena.var(i as u32), p))
+        .map(|(i, &p)| (arena.var(i as u32), p))
         .collect();
     let mut temps = Temporaries {
-        next: nv as u32,
-        params: &default_params,
+        next: priority.len() as u32,
+        params: default_params,
         never_tear: &never_tear,
         tear_priority: &tear_priority,
     };
     let schedule = causalize_graph(
-        &mut flat.arena,
+        arena,
         &residuals,
         &unknown_leaves,
         &incidence,
         &[],
         options.linear_blocks,
         &mut temps,
-    )
-    .map_err(|s| {
-        let name_of =
-            |&l: &Id| reduced.slots[reduced.slot_of.get(l).expect("a slot")].name(&variables);
-        SimplifyError::singular(
-            &name,
-            s.over_equations
-                .iter()
-                .map(|&e| {
-                    reduce::with_reduced_form(
-                        &reduced.equations[e].text.to_string(),
-                        &flat.arena,
-                        reduced.equations[e].residual,
-                        &show,
-                    )
-                })
-                .collect(),
-            s.over_unknowns.iter().map(name_of).collect(),
-            s.under_unknowns.iter().map(name_of).collect(),
-        )
-    })?;
+    )?;
+    let next_temporary = temps.next;
+    Ok(CausalStage {
+        schedule,
+        next_temporary,
+        never_tear,
+    })
+}
 
-    // Unknowns: position-level states, algebraic unknowns, velocity-level states.
+/// The unknowns of the residual in order, with their mass-matrix diagonal and the rows.
+struct Ordering {
+    /// Position-level states, algebraic unknowns, velocity-level states.
+    unknowns: Vec<Id>,
+    mass: Vec<f64>,
+    /// The index of each unknown.
+    index_of: HashMap<Id, usize>,
+    rows: Vec<ResidualRow>,
+    /// Derivatives of states that the iteration solves for: read from `u'`.
+    derivative_inputs: Vec<(Id, usize)>,
+    n_states: usize,
+    n_algebraic: usize,
+}
+
+/// Stage 5: the order of the unknowns (position-level states, algebraic unknowns,
+/// velocity-level states) and the rows of the residual (the iteration's residuals, then
+/// `u' - value` for each state whose derivative is computed explicitly).
+fn order_unknowns(reduced: &reduce::IndexReduced, schedule: &Schedule) -> Ordering {
+    let state_set: HashSet<usize> = reduced.states.iter().copied().collect();
     let iteration: HashSet<Id> = schedule.iteration.iter().copied().collect();
-    let mut position = Vec::new();
-    let mut velocity = Vec::new();
-    for &s in &reduced.states {
-        let d = reduced.var_diff[s].expect("a state has a derivative");
-        if state_set.contains(&d) {
-            position.push(s);
-        } else {
-            velocity.push(s);
-        }
-    }
-    let state_leaf_derivs: HashMap<Id, usize> = reduced
+    let derivative_leaf = |s: usize| reduced.slots[reduced.var_diff[s].expect("a state")].leaf;
+    let (position, velocity): (Vec<usize>, Vec<usize>) = reduced
         .states
         .iter()
-        .map(|&s| (reduced.slots[reduced.var_diff[s].expect("state")].leaf, s))
-        .collect();
+        .partition(|&&s| state_set.contains(&reduced.var_diff[s].expect("a state")));
+    let state_derivatives: HashSet<Id> =
+        reduced.states.iter().map(|&s| derivative_leaf(s)).collect();
     let algebraic: Vec<Id> = schedule
         .iteration
         .iter()
         .copied()
-        .filter(|l| !state_leaf_derivs.contains_key(l))
+        .filter(|l| !state_derivatives.contains(l))
         .collect();
     let mut unknowns: Vec<Id> = Vec::new();
     let mut mass = Vec::new();
@@ -414,17 +609,15 @@ fn simplify_flat(
         mass.push(1.0);
     }
     let index_of: HashMap<Id, usize> = unknowns.iter().enumerate().map(|(k, &l)| (l, k)).collect();
-    let mut rows = Vec::new();
+    let mut rows: Vec<ResidualRow> = schedule
+        .residuals
+        .iter()
+        .map(|&(residual, equation)| ResidualRow::Equation { residual, equation })
+        .collect();
     let mut derivative_inputs = Vec::new();
-    for &(r, e) in &schedule.residuals {
-        rows.push(ResidualRow::Equation {
-            residual: r,
-            equation: e,
-        });
-    }
     for &s in position.iter().chain(&velocity) {
         let k = index_of[&reduced.slots[s].leaf];
-        let d = reduced.slots[reduced.var_diff[s].expect("state")].leaf;
+        let d = derivative_leaf(s);
         if iteration.contains(&d) {
             derivative_inputs.push((d, k));
         } else {
@@ -432,51 +625,26 @@ fn simplify_flat(
         }
     }
     debug_assert_eq!(rows.len(), unknowns.len());
-    let simplify_s = t1.elapsed().as_secs_f64();
-
-    // Code generation.
-    let t2 = Instant::now();
-    let (observed, observed_names) =
-        observed_outputs(&variables, &aliases.replaced, &aliases.derivative, &reduced);
-    for group in &mut dynamic {
-        group.outputs = dynamic_outputs(group, &reduced, &index_of, variables.len());
+    Ordering {
+        unknowns,
+        mass,
+        index_of,
+        rows,
+        derivative_inputs,
+        n_states: position.len() + velocity.len(),
+        n_algebraic: algebraic.len(),
     }
-    // Groups whose static choice the solver watches (when the model has no dynamic
-    // states of its own).
-    let dynamic_candidates: Vec<dynamic_states::StaticGroup> = if dynamic.is_empty() {
-        reduced
-            .dynamic
-            .iter()
-            .filter_map(|g| static_group(g, &reduced, &index_of, variables.len()))
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let compiled = compile_dae(
-        &mut flat.arena,
-        &DaeSpec {
-            steps: &schedule.steps,
-            unknowns: &unknowns,
-            derivative_inputs: &derivative_inputs,
-            rows: &rows,
-            observed: &observed,
-            observed_names,
-            n_params: flat.parameters.len(),
-            names: &|id| {
-                reduced
-                    .slot_of
-                    .get(id)
-                    .map(|s| reduced.slots[s].name(&variables))
-                    .unwrap_or_else(|| format!("{id:?}"))
-            },
-        },
-    )
-    .map_err(|e| SimplifyError::Codegen {
-        model: name.clone(),
-        message: e.to_string(),
-    })?;
-    let codegen_s = t2.elapsed().as_secs_f64();
+}
 
+/// Stage 7: the translation statistics.
+fn statistics(
+    (flat_equations, flat_unknowns): (usize, usize),
+    aliases: &alias::Aliases,
+    reduced: &reduce::IndexReduced,
+    schedule: &Schedule,
+    order: &Ordering,
+    times: PhaseTimes,
+) -> Statistics {
     let mut statistics = Statistics {
         flat_equations,
         flat_unknowns,
@@ -485,66 +653,18 @@ fn simplify_flat(
         differentiated_equations: reduced.equations.len() - reduced.n_original,
         dummy_derivatives: reduced.dummy.iter().filter(|&&d| d).count(),
         sorted_equations: reduced.equations.len(),
-        states: position.len() + velocity.len(),
-        algebraic: algebraic.len(),
+        states: order.n_states,
+        algebraic: order.n_algebraic,
         assignments: schedule
             .steps
             .iter()
             .filter(|s| matches!(s, Stmt::Assign { equation, .. } if *equation != usize::MAX))
             .count(),
-        times: PhaseTimes {
-            flatten_s,
-            simplify_s,
-            codegen_s,
-        },
+        times,
         ..Statistics::default()
     };
     statistics.blocks(&schedule.blocks);
-    log::debug!("{statistics}");
-    let mut warnings = reduced.warnings.clone();
-    warnings.sort();
-    warnings.dedup();
-    let states = reduced.states.clone();
-    // The flat model's vectors move into the result (no copy of every name).
-    let crate::model::FlatSystem {
-        parameters,
-        parameter_values,
-        arena,
-        assertions,
-        ..
-    } = flat;
-    Ok(Simplified::Done(Box::new(SimplifiedSystem {
-        name,
-        never_tear: never_tear.clone(),
-        variables,
-        parameters,
-        parameter_index: std::sync::OnceLock::new(),
-        unknown_index: std::sync::OnceLock::new(),
-        evaluated_parameters,
-        assertions,
-        parameter_values,
-        starts,
-        replaced: aliases.replaced,
-        slots: reduced.slots,
-        slot_of: reduced.slot_of,
-        var_diff: reduced.var_diff,
-        equations: reduced.equations,
-        initial_equations,
-        states,
-        unknowns,
-        mass_matrix_diagonal: mass,
-        schedule,
-        rows,
-        next_temporary: temps.next,
-        compiled,
-        statistics,
-        warnings,
-        dynamic,
-        dynamic_candidates,
-        dynamic_source: None,
-        dynamic_variant: std::sync::OnceLock::new(),
-        arena: std::sync::Arc::new(arena),
-    })))
+    statistics
 }
 
 /// Observed outputs of slots: the flat variables, then the derivative slots in slot

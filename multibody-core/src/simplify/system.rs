@@ -154,28 +154,17 @@ pub struct StateCandidates {
     pub chosen: Vec<String>,
 }
 
-/// A model reduced to unknowns `u` (states and algebraic unknowns), a diagonal mass
-/// matrix and residuals `0 = F(t, u, u')`, with every eliminated variable kept as an
-/// observed expression and the compiled functions ready for a
-/// [`DaeProblem`](crate::solve::DaeProblem).
+/// What the model declared, after flattening: its name, variables, parameters and
+/// their values, start values and assertions, and the expressions of all of them.
 #[derive(Clone, Debug)]
-pub struct SimplifiedSystem {
+pub(crate) struct ModelData {
     pub(crate) name: String,
-    /// Leaves that tearing never iterates on (orientation matrix entries), for the
-    /// initialization system's tearing too.
-    pub(crate) never_tear: crate::hash::HashSet<Id>,
     /// The expressions, shared with the problems built on this system (their
     /// initializations extend it without copying it).
     pub(crate) arena: std::sync::Arc<Arena>,
     /// The flat variables (shared with the texts of the equations).
     pub(crate) variables: std::sync::Arc<Vec<Variable>>,
     pub(crate) parameters: Vec<Parameter>,
-    /// The names of `parameters` with their lookup, built for the first solution and
-    /// shared by every later one.
-    pub(crate) parameter_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
-    /// The names of the unknowns with their lookup (for `der(x)` in solutions), built
-    /// for the first solution and shared likewise.
-    pub(crate) unknown_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
     /// Per parameter: whether its value was folded in at compile time.
     pub(crate) evaluated_parameters: Vec<bool>,
     /// Conditions on parameters, checked for each problem's values.
@@ -184,16 +173,33 @@ pub struct SimplifiedSystem {
     pub(crate) parameter_values: Vec<Option<Id>>,
     /// Start values per flat variable (expressions of parameters).
     pub(crate) starts: Vec<Option<Id>>,
+}
+
+/// The index-reduced equations and the variables they are in: what alias elimination,
+/// index reduction and state selection made of the model.
+#[derive(Clone, Debug)]
+pub(crate) struct Reduction {
     /// Per flat variable: its replacement when alias elimination removed it.
     pub(crate) replaced: Vec<Option<Id>>,
+    /// The variables and derivatives the reduced equations are in.
     pub(crate) slots: Vec<Slot>,
     /// The slot of each leaf, indexed by the leaf's id.
     pub(crate) slot_of: crate::expr::IdIndex,
+    /// Per slot: the slot of its derivative.
     pub(crate) var_diff: Vec<Option<usize>>,
     pub(crate) equations: Vec<ReducedEquation>,
     pub(crate) initial_equations: Vec<(Id, String)>,
     /// Slots that are states.
     pub(crate) states: Vec<usize>,
+    /// Leaves that tearing never iterates on (orientation matrix entries), for the
+    /// initialization system's tearing too.
+    pub(crate) never_tear: crate::hash::HashSet<Id>,
+}
+
+/// The sorted system: the unknowns of the residual, the order of the explicit
+/// computations, and the residual's rows.
+#[derive(Clone, Debug)]
+pub(crate) struct Sorted {
     /// The unknowns: leaves (state slots and iteration variables), in order.
     pub(crate) unknowns: Vec<Id>,
     pub(crate) mass_matrix_diagonal: Vec<f64>,
@@ -201,20 +207,49 @@ pub struct SimplifiedSystem {
     pub(crate) rows: Vec<ResidualRow>,
     /// First variable index free for temporaries.
     pub(crate) next_temporary: u32,
-    pub(crate) compiled: CompiledDae,
-    pub(crate) statistics: Statistics,
-    pub(crate) warnings: Vec<String>,
+}
+
+/// Dynamic state selection: the groups of dynamic states this system has, or those
+/// whose static choice the solver watches, and the compilation with dynamic states
+/// made when that choice degrades.
+#[derive(Clone, Debug)]
+pub(crate) struct DynamicSelection {
     /// Groups of dynamic states (see [`super::dynamic_states`]).
-    pub(crate) dynamic: Vec<super::dynamic_states::DynamicStateGroup>,
+    pub(crate) groups: Vec<super::dynamic_states::DynamicStateGroup>,
     /// Groups whose static choice of states depends on the configuration (watched by
     /// the solver when the system has no dynamic states).
-    pub(crate) dynamic_candidates: Vec<super::dynamic_states::StaticGroup>,
+    pub(crate) candidates: Vec<super::dynamic_states::StaticGroup>,
     /// The model and options to compile again with dynamic states, when the solver
     /// finds the static choice degrading.
-    pub(crate) dynamic_source:
-        Option<std::sync::Arc<(crate::model::System, super::SimplifyOptions)>>,
+    pub(crate) source: Option<std::sync::Arc<(crate::model::System, super::SimplifyOptions)>>,
     /// That compilation, made on first need.
-    pub(crate) dynamic_variant: std::sync::OnceLock<Result<Box<SimplifiedSystem>, String>>,
+    pub(crate) variant: std::sync::OnceLock<Result<Box<SimplifiedSystem>, String>>,
+}
+
+/// A model reduced to unknowns `u` (states and algebraic unknowns), a diagonal mass
+/// matrix and residuals `0 = F(t, u, u')`, with every eliminated variable kept as an
+/// observed expression and the compiled functions ready for a
+/// [`DaeProblem`](crate::solve::DaeProblem).
+#[derive(Clone, Debug)]
+pub struct SimplifiedSystem {
+    /// What the model declared.
+    pub(crate) model: ModelData,
+    /// The index-reduced equations.
+    pub(crate) reduction: Reduction,
+    /// The sorted residual.
+    pub(crate) sorted: Sorted,
+    /// The residual, Jacobian and observed functions.
+    pub(crate) compiled: CompiledDae,
+    /// Dynamic state selection.
+    pub(crate) dynamic: DynamicSelection,
+    /// The names of `parameters` with their lookup, built for the first solution and
+    /// shared by every later one.
+    pub(crate) parameter_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
+    /// The names of the unknowns with their lookup (for `der(x)` in solutions), built
+    /// for the first solution and shared likewise.
+    pub(crate) unknown_index: std::sync::OnceLock<std::sync::Arc<crate::names::NameIndex>>,
+    pub(crate) statistics: Statistics,
+    pub(crate) warnings: Vec<String>,
 }
 
 impl SimplifiedSystem {
@@ -226,7 +261,7 @@ impl SimplifiedSystem {
 
     /// The model's name.
     pub fn name(&self) -> &str {
-        &self.name
+        &self.model.name
     }
 
     /// The groups of candidates for states whose static choice depends on the
@@ -234,18 +269,20 @@ impl SimplifiedSystem {
     /// and those chosen. A solve watches the choice and changes to dynamic states where
     /// it degrades (see [`super::DynamicStates`]).
     pub fn state_candidates(&self) -> Vec<StateCandidates> {
-        let name = |v: usize| self.variables[v].name.to_string();
+        let name = |v: usize| self.model.variables[v].name.to_string();
         let from = |candidates: &[usize], chosen: &[usize]| StateCandidates {
             candidates: candidates.iter().map(|&v| name(v)).collect(),
             chosen: chosen.iter().map(|&i| name(candidates[i])).collect(),
         };
-        if self.dynamic.is_empty() {
-            self.dynamic_candidates
+        if self.dynamic.groups.is_empty() {
+            self.dynamic
+                .candidates
                 .iter()
                 .map(|g| from(&g.candidates.candidates, &g.candidates.chosen))
                 .collect()
         } else {
             self.dynamic
+                .groups
                 .iter()
                 .map(|g| from(&g.candidates, &g.preferred))
                 .collect()
@@ -255,14 +292,19 @@ impl SimplifiedSystem {
     /// Names of the unknowns `u`, in order: position-level states, algebraic unknowns,
     /// velocity-level states.
     pub fn unknowns(&self) -> Vec<String> {
-        self.unknowns.iter().map(|&l| self.leaf_name(l)).collect()
+        self.sorted
+            .unknowns
+            .iter()
+            .map(|&l| self.leaf_name(l))
+            .collect()
     }
 
     /// Names of the continuous states, in the order of [`unknowns`](Self::unknowns).
     pub fn states(&self) -> Vec<String> {
-        self.unknowns
+        self.sorted
+            .unknowns
             .iter()
-            .zip(&self.mass_matrix_diagonal)
+            .zip(&self.sorted.mass_matrix_diagonal)
             .filter(|(_, m)| **m == 1.0)
             .map(|(&l, _)| self.leaf_name(l))
             .collect()
@@ -271,7 +313,7 @@ impl SimplifiedSystem {
     /// The diagonal of the mass matrix: 1 for a differential unknown, 0 for an
     /// algebraic one.
     pub fn mass_matrix_diagonal(&self) -> &[f64] {
-        &self.mass_matrix_diagonal
+        &self.sorted.mass_matrix_diagonal
     }
 
     /// The residual equations `0 = F(t, u, u')` as text, one per unknown.
@@ -279,10 +321,10 @@ impl SimplifiedSystem {
         let names = self.resolver();
         // A state's derivative is a leaf computed by the sorted steps: show how.
         let mut computed: HashMap<Id, String> = HashMap::default();
-        for step in &self.schedule.steps {
+        for step in &self.sorted.schedule.steps {
             match step {
                 Stmt::Assign { target, expr, .. } => {
-                    computed.insert(*target, self.arena.display(*expr, &names));
+                    computed.insert(*target, self.model.arena.display(*expr, &names));
                 }
                 Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } => {
                     let k = targets.len();
@@ -292,18 +334,19 @@ impl SimplifiedSystem {
                 }
             }
         }
-        self.rows
+        self.sorted
+            .rows
             .iter()
             .map(|r| match r {
                 ResidualRow::Equation { residual, .. } => {
-                    format!("0 = {}", self.arena.display(*residual, &names))
+                    format!("0 = {}", self.model.arena.display(*residual, &names))
                 }
                 ResidualRow::StateDerivative { state, value } => format!(
                     "der({}) = {}",
-                    self.leaf_name(self.unknowns[*state]),
+                    self.leaf_name(self.sorted.unknowns[*state]),
                     computed
                         .remove(value)
-                        .unwrap_or_else(|| self.arena.display(*value, &names))
+                        .unwrap_or_else(|| self.model.arena.display(*value, &names))
                 ),
             })
             .collect()
@@ -314,23 +357,26 @@ impl SimplifiedSystem {
     pub fn observed(&self) -> Vec<(String, String)> {
         let names = self.resolver();
         let mut out = Vec::new();
-        for (i, v) in self.variables.iter().enumerate() {
-            if let Some(r) = self.replaced[i] {
-                out.push((v.name.to_string(), self.arena.display(r, &names)));
+        for (i, v) in self.model.variables.iter().enumerate() {
+            if let Some(r) = self.reduction.replaced[i] {
+                out.push((v.name.to_string(), self.model.arena.display(r, &names)));
             }
         }
-        for step in &self.schedule.steps {
+        for step in &self.sorted.schedule.steps {
             match step {
                 Stmt::Assign {
                     target,
                     expr,
                     equation,
                 } if *equation != usize::MAX => {
-                    out.push((self.leaf_name(*target), self.arena.display(*expr, &names)));
+                    out.push((
+                        self.leaf_name(*target),
+                        self.model.arena.display(*expr, &names),
+                    ));
                 }
                 Stmt::LinearSolve { targets, .. } | Stmt::SparseLinearSolve { targets, .. } => {
                     for &t in targets {
-                        if self.slot_of.contains(t) {
+                        if self.reduction.slot_of.contains(t) {
                             out.push((self.leaf_name(t), "linear system".into()));
                         }
                     }
@@ -353,14 +399,23 @@ impl SimplifiedSystem {
 
     /// Names of the tunable parameters.
     pub fn parameters(&self) -> Vec<String> {
-        self.parameters.iter().map(|p| p.name.to_string()).collect()
+        self.model
+            .parameters
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect()
     }
 
     /// The names of the tunable parameters with their lookup (built once, shared).
     pub(crate) fn parameter_index(&self) -> std::sync::Arc<crate::names::NameIndex> {
         self.parameter_index
             .get_or_init(|| {
-                let names = self.parameters.iter().map(|p| p.name.clone()).collect();
+                let names = self
+                    .model
+                    .parameters
+                    .iter()
+                    .map(|p| p.name.clone())
+                    .collect();
                 std::sync::Arc::new(crate::names::NameIndex::new(names))
             })
             .clone()
@@ -381,9 +436,10 @@ impl SimplifiedSystem {
     /// [`SimplifyOptions::evaluate_parameters`](super::SimplifyOptions)); a problem
     /// cannot change them.
     pub fn evaluated_parameters(&self) -> Vec<String> {
-        self.parameters
+        self.model
+            .parameters
             .iter()
-            .zip(&self.evaluated_parameters)
+            .zip(&self.model.evaluated_parameters)
             .filter(|(_, e)| **e)
             .map(|(p, _)| p.name.to_string())
             .collect()
@@ -403,22 +459,22 @@ impl SimplifiedSystem {
 
     /// A readable name for a leaf: its slot's name, or how it displays.
     pub(crate) fn leaf_name(&self, leaf: Id) -> String {
-        self.leaf_name_in(&self.arena, leaf)
+        self.leaf_name_in(&self.model.arena, leaf)
     }
 
     /// [`Self::leaf_name`] for a leaf of `arena`, an extension of this system's arena
     /// (the initialization adds its own temporaries).
     pub(crate) fn leaf_name_in(&self, arena: &Arena, leaf: Id) -> String {
-        match self.slot_of.get(leaf) {
-            Some(s) => self.slots[s].name(&self.variables),
+        match self.reduction.slot_of.get(leaf) {
+            Some(s) => self.reduction.slots[s].name(&self.model.variables),
             None => arena.display(leaf, &self.resolver()),
         }
     }
 
     pub(crate) fn resolver(&self) -> SystemNames<'_> {
         SystemNames {
-            variables: &self.variables,
-            parameters: &self.parameters,
+            variables: &self.model.variables,
+            parameters: &self.model.parameters,
         }
     }
 }

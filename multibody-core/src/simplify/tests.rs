@@ -279,10 +279,11 @@ fn derivative_names_are_made_when_asked_and_match_the_slots() {
     let ssys = structural_simplify(&s).unwrap();
     let names = ssys.variable_names();
     let derivative_slots: Vec<String> = ssys
+        .reduction
         .slots
         .iter()
         .filter(|s| s.order > 0)
-        .map(|s| s.name(&ssys.variables))
+        .map(|s| s.name(&ssys.model.variables))
         .collect();
     assert_eq!(derivative_slots, ["der(x)", "der(der(x))"]);
     for slot in &derivative_slots {

@@ -85,21 +85,23 @@ pub(crate) struct InitResult {
 #[allow(clippy::result_large_err)] // built once per problem, reported to the user
 pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
     let sys = input.sys;
-    let model = sys.name.clone();
+    let model = sys.model.name.clone();
     // The model's expressions are shared, not copied: the initialization's own nodes
     // go on top of them.
-    let mut arena = crate::expr::Arena::extending(sys.arena.clone());
-    let np = sys.parameters.len();
-    let nv = sys.variables.len();
+    let mut arena = crate::expr::Arena::extending(sys.model.arena.clone());
+    let np = sys.model.parameters.len();
+    let nv = sys.model.variables.len();
     // Its equations (derivatives, start values, tearing) add about half as many nodes
     // again, and a parameter per start value.
-    arena.reserve(np + nv, sys.arena.len() / 2);
+    arena.reserve(np + nv, sys.model.arena.len() / 2);
     let start_leaf: Vec<Id> = (0..nv).map(|i| arena.param((np + i) as u32)).collect();
 
     // Unknowns: slots, then parameters computed at initialization.
-    let free_params: Vec<usize> = (0..np).filter(|&j| !sys.parameters[j].fixed).collect();
-    let mut unknowns: Vec<Id> = Vec::with_capacity(sys.slots.len() + free_params.len());
-    unknowns.extend(sys.slots.iter().map(|s| s.leaf));
+    let free_params: Vec<usize> = (0..np)
+        .filter(|&j| !sys.model.parameters[j].fixed)
+        .collect();
+    let mut unknowns: Vec<Id> = Vec::with_capacity(sys.reduction.slots.len() + free_params.len());
+    unknowns.extend(sys.reduction.slots.iter().map(|s| s.leaf));
     for &j in &free_params {
         unknowns.push(arena.param(j as u32));
     }
@@ -108,11 +110,12 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     // Mandatory equations (as many as unknowns in the end, once completed).
     let mut eqs: Vec<(Id, InitText<'_>)> = Vec::with_capacity(unknowns.len());
     eqs.extend(
-        sys.equations
+        sys.reduction
+            .equations
             .iter()
             .map(|e| (e.residual, InitText::Model(&e.text))),
     );
-    for (r, text) in &sys.initial_equations {
+    for (r, text) in &sys.reduction.initial_equations {
         for l in arena.leaves(*r) {
             if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains(l) {
                 return Err(InitError::BadValue {
@@ -132,7 +135,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         if !input.fixed[i] {
             continue;
         }
-        let value = match sys.replaced[i] {
+        let value = match sys.reduction.replaced[i] {
             Some(r) => r,
             None => arena.var(i as u32),
         };
@@ -142,7 +145,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             continue;
         }
         let r = arena.sub(value, start_leaf[i]);
-        eqs.push((r, InitText::FixedStart(&sys.variables[i].name)));
+        eqs.push((r, InitText::FixedStart(&sys.model.variables[i].name)));
     }
 
     // Structure: mandatory equations must be matchable.
@@ -167,14 +170,14 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     // value, then other variables that have one, then the remaining states (at 0).
     let mut assumed = Vec::new();
     let is_state: Vec<bool> = {
-        let mut v = vec![false; sys.slots.len()];
-        for &s in &sys.states {
+        let mut v = vec![false; sys.reduction.slots.len()];
+        for &s in &sys.reduction.states {
             v[s] = true;
         }
         v
     };
     let has_start = |s: usize| {
-        let slot = &sys.slots[s];
+        let slot = &sys.reduction.slots[s];
         slot.order == 0 && input.starts[slot.var].is_some()
     };
     let class = |s: usize| match (is_state[s], has_start(s)) {
@@ -184,12 +187,17 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     };
     // Other variables qualify only if they could have been states (they have a
     // derivative): never orientation matrix entries and the like.
-    let candidates: Vec<usize> = (0..sys.slots.len())
-        .filter(|&s| is_state[s] || (has_start(s) && sys.var_diff[s].is_some()))
+    let candidates: Vec<usize> = (0..sys.reduction.slots.len())
+        .filter(|&s| is_state[s] || (has_start(s) && sys.reduction.var_diff[s].is_some()))
         .collect();
     // Sort keys first: comparing through the slots and variables would jump around
     // memory at every comparison.
-    let key = |s: usize| (class(s), -sys.variables[sys.slots[s].var].state_priority);
+    let key = |s: usize| {
+        (
+            class(s),
+            -sys.model.variables[sys.reduction.slots[s].var].state_priority,
+        )
+    };
     let mut keyed: Vec<((u8, f64), usize)> = candidates.iter().map(|&s| (key(s), s)).collect();
     keyed.sort_by(|(ka, a), (kb, b)| ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1)).then(a.cmp(b)));
     let candidates: Vec<usize> = keyed.into_iter().map(|(_, s)| s).collect();
@@ -199,7 +207,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         if deficiency == 0 {
             break;
         }
-        let slot = &sys.slots[s];
+        let slot = &sys.reduction.slots[s];
         let k = index.get(slot.leaf).expect("a slot is an unknown");
         graph.eq_vars.push(&[k]);
         let e_new = graph.eq_vars.len() - 1;
@@ -215,7 +223,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             } else {
                 slot.leaf
             };
-            let name = slot.name(&sys.variables);
+            let name = slot.name(&sys.model.variables);
             eqs.push((r, InitText::AssumedStart(name.clone())));
             assumed.push((name, value));
             deficiency -= 1;
@@ -246,17 +254,18 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
     known.extend(input.starts.iter().map(|s| s.unwrap_or(0.0)));
     // Orientation entries are computed from the joint coordinates, never iterated on
     // (as in the DAE's own tearing).
-    let never_tear = &sys.never_tear;
+    let never_tear = &sys.reduction.never_tear;
     // Slots (the variables themselves, not their derivatives) rank as tearing and
     // iteration variables by their state priority.
     let tear_priority: HashMap<Id, f64> = sys
+        .reduction
         .slots
         .iter()
-        .filter(|s| s.order == 0 && sys.variables[s.var].state_priority != 0.0)
-        .map(|s| (s.leaf, sys.variables[s.var].state_priority))
+        .filter(|s| s.order == 0 && sys.model.variables[s.var].state_priority != 0.0)
+        .map(|s| (s.leaf, sys.model.variables[s.var].state_priority))
         .collect();
     let mut temps = Temporaries {
-        next: sys.next_temporary,
+        next: sys.sorted.next_temporary,
         params: &known,
         never_tear,
         tear_priority: &tear_priority,
@@ -269,7 +278,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         &unknowns,
         &graph,
         // The model's equations come first, as the model's schedule numbers them.
-        &sys.schedule.solved_for,
+        &sys.sorted.schedule.solved_for,
         LinearBlockLimits::default(),
         &mut temps,
     )
@@ -301,9 +310,10 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             observed_names,
             n_params: np + nv,
             names: &|id| {
-                sys.slot_of
+                sys.reduction
+                    .slot_of
                     .get(id)
-                    .map(|s| sys.slots[s].name(&sys.variables))
+                    .map(|s| sys.reduction.slots[s].name(&sys.model.variables))
                     .unwrap_or_else(|| format!("{id:?}"))
             },
         },
@@ -356,7 +366,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .filter(|&i| input.fixed[i])
             .map(|i| {
                 (
-                    sys.variables[i].name.to_string(),
+                    sys.model.variables[i].name.to_string(),
                     input.starts[i].unwrap_or(0.0),
                 )
             })
@@ -372,11 +382,12 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         });
     }
     nearest_turns(&compiled, &mut inputs, layout, &schedule.iteration, |l| {
-        sys.slot_of
+        sys.reduction
+            .slot_of
             .get(l)
-            .filter(|&s| sys.slots[s].order == 0)
+            .filter(|&s| sys.reduction.slots[s].order == 0)
             .and_then(|s| {
-                let v = sys.slots[s].var;
+                let v = sys.reduction.slots[s].var;
                 input.guesses[v].or(input.starts[v])
             })
     });
@@ -389,7 +400,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             model: model.clone(),
             message: format!("evaluating the initial values failed: {}", e.message),
         })?;
-    let n_slots = sys.slots.len();
+    let n_slots = sys.reduction.slots.len();
     let mut params = input.params.clone();
     for (k, &j) in free_params.iter().enumerate() {
         params[j] = values[n_slots + k];
@@ -406,7 +417,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
         {
             return Err(InitError::Inconsistent {
                 model,
-                variable: sys.variables[i].name.to_string(),
+                variable: sys.model.variables[i].name.to_string(),
                 start,
                 value: v,
             });
@@ -463,8 +474,8 @@ fn nearest_turns(
 
 /// The first guess of an iteration variable: its guess, its start value, or 0.
 fn guess(sys: &SimplifiedSystem, input: &InitInput<'_>, arena: &crate::expr::Arena, l: Id) -> f64 {
-    if let Some(s) = sys.slot_of.get(l) {
-        let slot = &sys.slots[s];
+    if let Some(s) = sys.reduction.slot_of.get(l) {
+        let slot = &sys.reduction.slots[s];
         if slot.order == 0 {
             return input.guesses[slot.var]
                 .or(input.starts[slot.var])

@@ -63,25 +63,25 @@ pub(crate) fn parameter_values(
     sys: &SimplifiedSystem,
     overrides: &HashMap<usize, f64>,
 ) -> Result<Vec<f64>, InitError> {
-    crate::model::evaluate_bindings(&sys.arena, &sys.parameter_values, overrides).map_err(
-        |missing| InitError::BadValue {
-            model: sys.name.clone(),
+    crate::model::evaluate_bindings(&sys.model.arena, &sys.model.parameter_values, overrides)
+        .map_err(|missing| InitError::BadValue {
+            model: sys.model.name.clone(),
             message: format!(
                 "the values of {} depend on each other or on variables",
                 missing
                     .iter()
-                    .map(|&j| format!("`{}`", sys.parameters[j].name))
+                    .map(|&j| format!("`{}`", sys.model.parameters[j].name))
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-        },
-    )
+        })
 }
 
 /// `sys` compiled with dynamic states (compiled on first need, then kept by `sys`).
 fn dynamic_variant_of(sys: &SimplifiedSystem, t: f64) -> Result<&SimplifiedSystem, Error> {
     let variant = sys
-        .dynamic_variant
+        .dynamic
+        .variant
         .get_or_init(|| {
             crate::simplify::dynamic_variant(sys)
                 .expect("a system that watches its states has a source")
@@ -90,7 +90,7 @@ fn dynamic_variant_of(sys: &SimplifiedSystem, t: f64) -> Result<&SimplifiedSyste
         })
         .as_ref()
         .map_err(|message| SolveError {
-            model: sys.name.clone(),
+            model: sys.model.name.clone(),
             t,
             flag: "DYNAMIC_STATES".into(),
             message: format!(
@@ -123,6 +123,7 @@ fn initialize_dynamic(
 ) -> Result<super::init::InitResult, InitError> {
     let per_group: Vec<Vec<Vec<usize>>> = sys
         .dynamic
+        .groups
         .iter()
         .map(|g| {
             // Candidates whose values are given (fixed, then with start values) first:
@@ -163,7 +164,7 @@ fn initialize_dynamic(
             fixed.clone(),
             guesses.clone(),
         );
-        for (g, sel) in sys.dynamic.iter().zip(&selections) {
+        for (g, sel) in sys.dynamic.groups.iter().zip(&selections) {
             g.select(sel, &mut params);
             for (j, &i) in sel.iter().enumerate() {
                 let q = g.candidates[i];
@@ -229,7 +230,7 @@ fn subsets(items: &[usize], size: usize, limit: usize) -> Vec<Vec<usize>> {
 /// Checks the parameter values `params` against the parameters' `min` and `max`.
 #[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
 fn check_ranges(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError> {
-    for (p, &v) in sys.parameters.iter().zip(params) {
+    for (p, &v) in sys.model.parameters.iter().zip(params) {
         let (below, above) = (v < p.min, v > p.max);
         if below || above {
             let (bound, which) = if below {
@@ -238,7 +239,7 @@ fn check_ranges(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError>
                 (p.max, "maximum")
             };
             return Err(InitError::BadValue {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 message: format!(
                     "parameter `{}` = {} is {} its {which} {}",
                     p.name,
@@ -255,24 +256,25 @@ fn check_ranges(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError>
 /// Checks the components' conditions on the parameter values `params`.
 #[allow(clippy::result_large_err)] // evaluated once per problem, reported to the user
 fn check_assertions(sys: &SimplifiedSystem, params: &[f64]) -> Result<(), InitError> {
-    for a in &sys.assertions {
-        if eval_with_params(&sys.arena, a.condition, params) != Some(0.0) {
+    for a in &sys.model.assertions {
+        if eval_with_params(&sys.model.arena, a.condition, params) != Some(0.0) {
             continue;
         }
         let values: Vec<String> = sys
+            .model
             .arena
             .leaves(a.condition)
             .into_iter()
-            .filter_map(|l| match sys.arena.node(l) {
+            .filter_map(|l| match sys.model.arena.node(l) {
                 Node::Param(j) => Some(format!(
                     "{} = {}",
-                    sys.parameters[*j as usize].name, params[*j as usize]
+                    sys.model.parameters[*j as usize].name, params[*j as usize]
                 )),
                 _ => None,
             })
             .collect();
         return Err(InitError::AssertionFailed {
-            model: sys.name.clone(),
+            model: sys.model.name.clone(),
             component: a.component.to_string(),
             type_name: a.type_name.to_string(),
             message: a.message.to_string(),
@@ -312,7 +314,7 @@ impl<'a> DaeProblem<'a> {
     ) -> Result<Self, Error> {
         if !(tspan.0.is_finite() && tspan.1.is_finite() && tspan.1 > tspan.0) {
             return Err(InitError::BadValue {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 message: format!(
                     "the time span ({}, {}) must be finite and increasing",
                     number(tspan.0),
@@ -326,7 +328,7 @@ impl<'a> DaeProblem<'a> {
         let shortest = (100.0 * f64::EPSILON * tspan.0.abs().max(tspan.1.abs())).max(1e-200);
         if tspan.1 - tspan.0 < shortest {
             return Err(InitError::BadValue {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 message: format!(
                     "the time span ({}, {}) is too short to integrate: the end must exceed \
                      the start by at least {}",
@@ -347,16 +349,17 @@ impl<'a> DaeProblem<'a> {
                 HashMap::default()
             }
         };
-        let var_index = index(&mut sys.variables.iter().map(|v| &*v.name));
-        let param_index = index(&mut sys.parameters.iter().map(|p| &*p.name));
+        let var_index = index(&mut sys.model.variables.iter().map(|v| &*v.name));
+        let param_index = index(&mut sys.model.parameters.iter().map(|p| &*p.name));
         let unknown = |name: &str| {
             let candidates = sys
+                .model
                 .variables
                 .iter()
                 .map(|v| &*v.name)
-                .chain(sys.parameters.iter().map(|p| &*p.name));
+                .chain(sys.model.parameters.iter().map(|p| &*p.name));
             InitError::UnknownName {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 name: name.to_string(),
                 suggestions: closest(name, candidates, 3),
             }
@@ -365,7 +368,7 @@ impl<'a> DaeProblem<'a> {
         let mut start_overrides = HashMap::default();
         let bad = |message: String| -> Error {
             InitError::BadValue {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 message,
             }
             .into()
@@ -381,7 +384,7 @@ impl<'a> DaeProblem<'a> {
                 )));
             }
             if let Some(&j) = param_index.get(name) {
-                if sys.evaluated_parameters[j] {
+                if sys.model.evaluated_parameters[j] {
                     return Err(bad(format!(
                         "parameter `{name}` was evaluated at compile time (declared `evaluate`, or SimplifyOptions::evaluate_parameters); simplify the model again to change it"
                     )));
@@ -393,7 +396,7 @@ impl<'a> DaeProblem<'a> {
                 return Err(unknown(name).into());
             }
         }
-        let mut guess_values = vec![None; sys.variables.len()];
+        let mut guess_values = vec![None; sys.model.variables.len()];
         let mut guessed: HashMap<&str, ()> = HashMap::default();
         for &(name, v) in guesses {
             if guessed.insert(name, ()).is_some() {
@@ -418,27 +421,28 @@ impl<'a> DaeProblem<'a> {
         if let Some(j) = params.iter().position(|p| !p.is_finite()) {
             return Err(bad(format!(
                 "parameter `{}` evaluates to {}",
-                sys.parameters[j].name, params[j]
+                sys.model.parameters[j].name, params[j]
             )));
         }
         check_ranges(sys, &params)?;
         check_assertions(sys, &params)?;
-        let mut starts = Vec::with_capacity(sys.variables.len());
-        let mut fixed = Vec::with_capacity(sys.variables.len());
-        for (i, v) in sys.variables.iter().enumerate() {
+        let mut starts = Vec::with_capacity(sys.model.variables.len());
+        let mut fixed = Vec::with_capacity(sys.model.variables.len());
+        for (i, v) in sys.model.variables.iter().enumerate() {
             if let Some(&s) = start_overrides.get(&i) {
                 starts.push(Some(s));
                 fixed.push(true);
                 continue;
             }
-            let s = match sys.starts[i] {
+            let s = match sys.model.starts[i] {
                 Some(e) => {
-                    let value = eval_with_params(&sys.arena, e, &params).ok_or_else(|| {
-                        bad(format!(
-                            "the start value of `{}` is not an expression of parameters",
-                            v.name
-                        ))
-                    })?;
+                    let value =
+                        eval_with_params(&sys.model.arena, e, &params).ok_or_else(|| {
+                            bad(format!(
+                                "the start value of `{}` is not an expression of parameters",
+                                v.name
+                            ))
+                        })?;
                     if !value.is_finite() {
                         return Err(bad(format!(
                             "the start value of `{}` evaluates to {value}",
@@ -452,7 +456,7 @@ impl<'a> DaeProblem<'a> {
             starts.push(s);
             fixed.push(v.fixed);
         }
-        let init = if sys.dynamic.is_empty() {
+        let init = if sys.dynamic.groups.is_empty() {
             let init = initialize(InitInput {
                 sys,
                 t0: tspan.0,
@@ -465,11 +469,11 @@ impl<'a> DaeProblem<'a> {
                 Ok(init) => init,
                 // The static choice of states may be singular right here: the model with
                 // dynamic states chooses others.
-                Err(e) if sys.dynamic_source.is_some() => {
+                Err(e) if sys.dynamic.source.is_some() => {
                     log::info!(
                         "model `{}`: initialization with the static choice of states failed \
                          ({e}); trying dynamic states",
-                        sys.name
+                        sys.model.name
                     );
                     let variant = dynamic_variant_of(sys, tspan.0)?;
                     return DaeProblem::new_with_guesses(variant, values, guesses, tspan)
@@ -480,11 +484,11 @@ impl<'a> DaeProblem<'a> {
         } else {
             initialize_dynamic(sys, tspan.0, params, starts, fixed, guess_values, false)?
         };
-        let given = sys.dynamic_source.is_some().then(|| {
+        let given = sys.dynamic.source.is_some().then(|| {
             let own =
                 |list: &[(&str, f64)]| list.iter().map(|&(n, v)| (n.to_string(), v)).collect();
-            let mut initial = vec![None; sys.variables.len()];
-            for (k, slot) in sys.slots.iter().enumerate() {
+            let mut initial = vec![None; sys.model.variables.len()];
+            for (k, slot) in sys.reduction.slots.iter().enumerate() {
                 if slot.order == 0 {
                     initial[slot.var] = Some(init.slot_values[k]);
                 }
@@ -506,12 +510,12 @@ impl<'a> DaeProblem<'a> {
         given: Option<Box<Given>>,
     ) -> DaeProblem<'a> {
         // u0 and u'0 from the slot values.
-        let mut u0 = Vec::with_capacity(sys.unknowns.len());
-        let mut up0 = Vec::with_capacity(sys.unknowns.len());
-        for &l in &sys.unknowns {
-            let s = sys.slot_of.get(l).expect("an unknown is a slot");
+        let mut u0 = Vec::with_capacity(sys.sorted.unknowns.len());
+        let mut up0 = Vec::with_capacity(sys.sorted.unknowns.len());
+        for &l in &sys.sorted.unknowns {
+            let s = sys.reduction.slot_of.get(l).expect("an unknown is a slot");
             u0.push(init.slot_values[s]);
-            up0.push(sys.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
+            up0.push(sys.reduction.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
         }
         DaeProblem {
             sys,
@@ -544,10 +548,10 @@ impl<'a> DaeProblem<'a> {
         // flattened the same way), then those of its dynamic states.
         let mut params = parameter_values(variant, &HashMap::default())?;
         params[..self.params.len()].copy_from_slice(&self.params);
-        let mut starts: Vec<Option<f64>> = vec![None; variant.variables.len()];
+        let mut starts: Vec<Option<f64>> = vec![None; variant.model.variables.len()];
         starts[..given.initial.len()].copy_from_slice(&given.initial);
         let guesses = starts.clone();
-        let fixed = vec![false; variant.variables.len()];
+        let fixed = vec![false; variant.model.variables.len()];
         let init = match initialize_dynamic(variant, t0, params, starts, fixed, guesses, true) {
             Ok(init) => init,
             Err(e) => {
@@ -620,7 +624,7 @@ impl<'a> DaeProblem<'a> {
         let sys = self.sys;
         if let Err(message) = options.check(self.tspan) {
             return Err(SolveError {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 t: self.tspan.0,
                 flag: "BAD_OPTION".into(),
                 message,
@@ -642,13 +646,13 @@ impl<'a> DaeProblem<'a> {
         });
         // A static choice of states that may degrade is watched; where it does, the
         // problem is solved on the model with dynamic states instead.
-        let watched = sys.dynamic.is_empty() && sys.dynamic_source.is_some();
+        let watched = sys.dynamic.groups.is_empty() && sys.dynamic.source.is_some();
         match self.run_segments(options, output_times.as_deref(), watched) {
             Err(Degraded::Static { t }) => {
                 log::info!(
                     "model `{}`: the static choice of states degrades at t = {t}; solving with \
                      dynamic states",
-                    sys.name
+                    sys.model.name
                 );
                 self.on_dynamic_variant()?.solve(options)
             }
@@ -741,12 +745,12 @@ impl<'a> DaeProblem<'a> {
                 SegmentEnd::Switch { t, y, yp, decision } => {
                     // The point where the selection changes ends this segment (it has
                     // it) and starts the next, with the new selection.
-                    for (g, sel) in sys.dynamic.iter().zip(&decision.selections) {
+                    for (g, sel) in sys.dynamic.groups.iter().zip(&decision.selections) {
                         g.select(sel, &mut params);
                     }
                     let (y, yp) = dynamic::restart_point(
                         &observer,
-                        &sys.dynamic,
+                        &sys.dynamic.groups,
                         &decision.selections,
                         &y,
                         &yp,
@@ -788,7 +792,7 @@ impl<'a> DaeProblem<'a> {
                     log::info!(
                         "model `{}`: the integration crosses a singular configuration near t = \
                          {t_fail} with tolerances relaxed {relaxation}-fold from t = {t0} to {}",
-                        sys.name,
+                        sys.model.name,
                         bridge_end.unwrap_or(t_fail)
                     );
                 }
@@ -796,14 +800,19 @@ impl<'a> DaeProblem<'a> {
             debug_assert_eq!(u0.len(), n);
         }
         Ok(Solution::new(SolutionParts {
-            model: sys.name.clone(),
+            model: sys.model.name.clone(),
             observed: sys.compiled.observed.clone(),
             names: sys.compiled.observed_names.clone(),
             layout: sys.compiled.layout,
             parameter_names: sys.parameter_index(),
             unknown_names: sys.unknown_index(),
-            variables: sys.variables.clone(),
-            differential: sys.mass_matrix_diagonal.iter().map(|&m| m == 1.0).collect(),
+            variables: sys.model.variables.clone(),
+            differential: sys
+                .sorted
+                .mass_matrix_diagonal
+                .iter()
+                .map(|&m| m == 1.0)
+                .collect(),
             t: run.t,
             u: run.u,
             up: run.up,
@@ -853,7 +862,7 @@ impl<'a> DaeProblem<'a> {
             max_step: options.max_step,
             initial_step: options.initial_step,
             max_steps: options.max_steps,
-            id: sys.mass_matrix_diagonal.clone(),
+            id: sys.sorted.mass_matrix_diagonal.clone(),
             suppress_alg: options.suppress_alg,
             matrix,
             calc_ic: false,
@@ -886,13 +895,13 @@ impl<'a> DaeProblem<'a> {
                 }
             }
             if watched {
-                if dynamic::static_degraded(observer, &sys.dynamic_candidates, t, y, yp, params) {
+                if dynamic::static_degraded(observer, &sys.dynamic.candidates, t, y, yp, params) {
                     degraded = Some(t);
                     return false;
                 }
                 return true;
             }
-            decision = dynamic::check(observer, &sys.dynamic, t, y, yp, params);
+            decision = dynamic::check(observer, &sys.dynamic.groups, t, y, yp, params);
             match &mut last {
                 Some((tl, yl, ypl)) => {
                     *tl = t;
@@ -903,7 +912,7 @@ impl<'a> DaeProblem<'a> {
             }
             decision.is_none()
         };
-        let dynamic = !sys.dynamic.is_empty() || watched;
+        let dynamic = !sys.dynamic.groups.is_empty() || watched;
         let result = ida::integrate_monitored(
             &mut f,
             t0,
@@ -926,7 +935,7 @@ impl<'a> DaeProblem<'a> {
         );
         if let Some(t) = exceeded {
             return Err(SolveError {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 t,
                 flag: "MAX_POINTS".into(),
                 message: format!(
@@ -944,7 +953,7 @@ impl<'a> DaeProblem<'a> {
             Err(e) if watched => return Ok(SegmentEnd::StaticDegraded { t: e.t }),
             Err(e) => {
                 let error: Error = SolveError {
-                    model: sys.name.clone(),
+                    model: sys.model.name.clone(),
                     t: e.t,
                     flag: e.flag.clone(),
                     message: e.message.clone(),
@@ -965,7 +974,7 @@ impl<'a> DaeProblem<'a> {
                         project(
                             c,
                             params,
-                            &sys.mass_matrix_diagonal,
+                            &sys.sorted.mass_matrix_diagonal,
                             (t0, u0, up0),
                             run,
                             first,
@@ -985,7 +994,7 @@ impl<'a> DaeProblem<'a> {
             project(
                 c,
                 params,
-                &sys.mass_matrix_diagonal,
+                &sys.sorted.mass_matrix_diagonal,
                 (t0, u0, up0),
                 run,
                 first,
@@ -994,7 +1003,7 @@ impl<'a> DaeProblem<'a> {
         if let Some(t) = stalled {
             return Ok(SegmentEnd::Failed {
                 error: SolveError {
-                    model: sys.name.clone(),
+                    model: sys.model.name.clone(),
                     t,
                     flag: "STALLED".into(),
                     message: format!(
@@ -1116,7 +1125,7 @@ impl Run {
     fn push(&mut self, t: f64, y: &[f64], yp: &[f64], sys: &SimplifiedSystem) -> Result<(), Error> {
         if self.points_left == 0 {
             return Err(SolveError {
-                model: sys.name.clone(),
+                model: sys.model.name.clone(),
                 t,
                 flag: "MAX_POINTS".into(),
                 message: "more reported points than SolverOptions::max_points".into(),
