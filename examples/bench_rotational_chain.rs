@@ -26,7 +26,7 @@
 //! On Linux each row also gives the minor page faults per element of compiling
 //! (`compile_faults_per_n`) and of initializing (`init_faults_per_n`) in the last
 //! round: memory the allocator got fresh from the kernel, which on a virtual machine
-//! costs about 1.5 us per page (see README.md, Benchmarks).
+//! costs about 1.5 us per page (see docs/benchmarks.md).
 
 use std::time::Instant;
 

@@ -13,7 +13,6 @@ pub mod hash;
 pub mod model;
 pub mod names;
 pub mod plot;
-mod prefetch;
 pub mod simplify;
 pub mod solve;
 pub(crate) mod sparse_lu;

@@ -283,10 +283,6 @@ fn claim(table: &mut Vec<u32>, sym: u32, idx: u32) -> bool {
     true
 }
 
-/// How many systems ahead of the one being read the next one's declarations are
-/// prefetched.
-const PREFETCH_AHEAD: usize = 4;
-
 /// Where an expression being translated comes from, in words.
 /// Characters of an equation that a message about it shows.
 const PLACE_CHARS: usize = 160;
@@ -416,22 +412,14 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
     // doubling, reading the model's strings once more.
     f.connectors.reserve_exact(n_connectors);
     f.connector_of_path = PathIndex::with_capacity(n_connectors, n_connector_path_bytes);
-    for (k, &s) in order.iter().enumerate() {
-        if let Some(next) = order.get(k + PREFETCH_AHEAD) {
-            crate::prefetch::prefetch_slice(&next.variables);
-            crate::prefetch::prefetch_slice(&next.parameters);
-        }
+    for &s in &order {
         f.declare(s);
     }
     if let Some(e) = f.errors.first() {
         return Err(e.clone());
     }
     // Pass 2: equations, starts and parameter values.
-    for (k, s) in order.iter().enumerate() {
-        if let Some(next) = order.get(k + PREFETCH_AHEAD) {
-            crate::prefetch::prefetch_slice(&next.equations);
-            crate::prefetch::prefetch_slice(next.path.as_bytes());
-        }
+    for s in order.iter() {
         // One shared copy of the path for all of this component's equations.
         let path: Arc<String> = Arc::new(s.path.clone());
         for eq in &s.equations {
@@ -703,11 +691,7 @@ impl<'s> Flattener<'_, 's> {
         let mut elems: Vec<(usize, bool)> = Vec::new();
         let mut elem_parent: Vec<usize> = Vec::new();
         for s in order {
-            for (k, c) in s.connections.iter().enumerate() {
-                if let Some(next) = s.connections.get(k + PREFETCH_AHEAD) {
-                    crate::prefetch::prefetch_slice(next.a.as_bytes());
-                    crate::prefetch::prefetch_slice(next.b.as_bytes());
-                }
+            for c in &s.connections {
                 // Written out only for messages.
                 let text = || {
                     format!(

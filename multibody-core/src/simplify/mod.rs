@@ -1,10 +1,25 @@
 //! `structural_simplify`: from a model to states, algebraic unknowns and residuals.
 //!
-//! The steps, each in its own file: flattening and the balance check (in
-//! [`crate::model`]), alias elimination (`alias.rs`), index reduction and state
-//! selection (`reduce.rs`, on the integer algorithms of [`crate::structure`]),
-//! causalization ([`mod@causalize`]: matching, BLT, tearing, where linear blocks are
-//! solved), and the assembly of the [`SimplifiedSystem`] with its compiled functions.
+//! The pipeline reads as its stages, each a function here on the algorithm of its own
+//! file:
+//! 1. flattening, the balance check and folding of evaluated parameters
+//!    (`flatten_stage`, on [`crate::model::flatten`] and `evaluate.rs`);
+//! 2. alias elimination (`alias_stage`, `alias.rs`);
+//! 3. index reduction and state selection (`reduce.rs`, on the integer algorithms of
+//!    [`crate::structure`]: Pantelides, dummy derivatives);
+//! 4. causalization (`causalize_stage`, [`mod@causalize`]: matching, BLT, tearing, and
+//!    where linear blocks are solved);
+//! 5. the order of the unknowns and the residual's rows (`order_unknowns`);
+//! 6. code generation ([`crate::codegen::dae`]);
+//! 7. the translation statistics (`statistics`),
+//!
+//! assembled into a [`SimplifiedSystem`]. Where the choice of states depends on the
+//! configuration, stages 1 to 7 run again with dynamic states (`dynamic_states.rs`).
+//!
+//! The layering is one way: `structure` (integer algorithms on plain data) and `expr`
+//! underneath, then `model`, `codegen`, `simplify` and `solve`; codegen compiles plain
+//! statements ([`crate::codegen::Stmt`]) on expressions and knows nothing of models or
+//! of how the statements were found.
 
 mod alias;
 pub mod causalize;
