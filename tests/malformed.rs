@@ -557,6 +557,37 @@ fn a_negative_moment_of_inertia_is_below_its_minimum() {
 }
 
 #[test]
+fn a_negative_stiffness_or_damping_is_below_its_minimum() {
+    // MSL: c(final min = 0), d(final min = 0) on springs and dampers.
+    let m = system! {
+        name: "osc";
+        fixed = Fixed::default();
+        spring = Spring { c: -4.0 };
+        inertia = Inertia::default();
+        connect(fixed.flange, spring.flange_a);
+        connect(spring.flange_b, inertia.flange_a);
+    };
+    assert_err(
+        run_default(&m),
+        Phase::Init,
+        &["parameter `spring.c` = -4 is below its minimum 0"],
+    );
+    let m = system! {
+        name: "osc";
+        fixed = Fixed::default();
+        damper = multibody::rotational::Damper { d: -1.0 };
+        inertia = Inertia::default();
+        connect(fixed.flange, damper.flange_a);
+        connect(damper.flange_b, inertia.flange_a);
+    };
+    assert_err(
+        run_default(&m),
+        Phase::Init,
+        &["parameter `damper.d` = -1 is below its minimum 0"],
+    );
+}
+
+#[test]
 fn a_nan_parameter_default_names_the_parameter() {
     let m = system! {
         name: "osc";

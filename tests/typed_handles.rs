@@ -151,6 +151,55 @@ fn a_derivative_that_is_not_computed_is_an_error_naming_the_computed_ones() {
 }
 
 #[test]
+fn derivatives_of_aliases_of_states_are_readable() {
+    // With a damper, MSL's relative states win: inertia.phi and the flanges' angles are
+    // aliases of damper.phi_rel, and their derivatives are the inertia's speed.
+    let m = system! {
+        name: "damped";
+        fixed = Fixed::default();
+        spring = Spring { c: 4.0 };
+        damper = multibody::rotational::Damper { d: 0.4 };
+        inertia = Inertia { phi_start: 1.0 };
+        connect(fixed.flange, spring.flange_a);
+        connect(spring.flange_b, inertia.flange_a);
+        connect(fixed.flange, damper.flange_a);
+        connect(damper.flange_b, inertia.flange_a);
+    };
+    let ssys = structural_simplify(&m).unwrap();
+    assert_eq!(ssys.states(), ["damper.phi_rel", "damper.w_rel"]);
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&tight())
+        .unwrap();
+    let w = sol.get(m.inertia.w).unwrap();
+    assert!(w.iter().any(|x| x.abs() > 0.5), "the inertia moves");
+    for name in [
+        "der(inertia.phi)",
+        "der(inertia.flange_a.phi)",
+        "der(spring.flange_b.phi)",
+        "der(damper.flange_b.phi)",
+    ] {
+        let d = sol.get(name).unwrap();
+        for (a, b) in d.iter().zip(&w) {
+            assert!((a - b).abs() < 1e-9, "{name} = {a}, inertia.w = {b}");
+        }
+    }
+    // And the acceleration: der(inertia.w) = -(c phi + d w) / J.
+    let (phi, a) = (
+        sol.get(m.inertia.phi).unwrap(),
+        sol.get("der(inertia.w)").unwrap(),
+    );
+    for k in 0..phi.len() {
+        let exact = -(4.0 * phi[k] + 0.4 * w[k]);
+        assert!(
+            (a[k] - exact).abs() < 1e-8,
+            "der(inertia.w) = {}, {exact}",
+            a[k]
+        );
+    }
+}
+
+#[test]
 fn a_close_but_wrong_name_suggests_the_sub_component_path() {
     let m = system! {
         name: "pendulum";

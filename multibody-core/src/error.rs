@@ -8,7 +8,11 @@ use crate::simplify::SimplifyError;
 use crate::solve::{InitError, SolutionError, SolveError};
 
 /// Anything that can go wrong from declaring a model to plotting its solution.
-#[derive(Debug, thiserror::Error)]
+///
+/// Its `Debug` form is the message itself, so that `fn main() -> Result<(), Error>`
+/// and `unwrap()` print what went wrong as a user reads it; match on the variants (or
+/// the stage errors they hold) to tell failures apart.
+#[derive(thiserror::Error)]
 pub enum Error {
     /// The model's declarations or connections are wrong, or it is unbalanced.
     #[error(transparent)]
@@ -31,6 +35,12 @@ pub enum Error {
     /// Plotting failed.
     #[error(transparent)]
     Plot(Box<PlotError>),
+}
+
+impl std::fmt::Debug for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Display::fmt(self, f)
+    }
 }
 
 macro_rules! boxed_from {

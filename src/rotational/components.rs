@@ -55,7 +55,7 @@ component! {
     #[type_name = "Rotational.Spring"]
     pub struct Spring {
         /// Spring constant [N.m/rad].
-        parameter c: f64 = 1.0;
+        parameter c(min = 0.0): f64 = 1.0;
         /// Unstretched spring angle [rad].
         parameter phi_rel0: f64 = 0.0;
         extends PartialCompliant { flange_a, flange_b, phi_rel, tau };
@@ -70,7 +70,7 @@ component! {
     #[type_name = "Rotational.Damper"]
     pub struct Damper {
         /// Damping constant [N.m.s/rad].
-        parameter d: f64 = 0.0;
+        parameter d(min = 0.0): f64 = 0.0;
         extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, tau, w_rel };
         equation {
             tau = d * w_rel;
@@ -83,9 +83,9 @@ component! {
     #[type_name = "Rotational.SpringDamper"]
     pub struct SpringDamper {
         /// Spring constant [N.m/rad].
-        parameter c: f64 = 1.0;
+        parameter c(min = 0.0): f64 = 1.0;
         /// Damping constant [N.m.s/rad].
-        parameter d: f64 = 0.0;
+        parameter d(min = 0.0): f64 = 0.0;
         /// Unstretched spring angle [rad].
         parameter phi_rel0: f64 = 0.0;
         extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, tau, w_rel };

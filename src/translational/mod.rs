@@ -88,7 +88,7 @@ component! {
     #[type_name = "Translational.Spring"]
     pub struct Spring {
         /// Spring constant [N/m].
-        parameter c: f64 = 1.0;
+        parameter c(min = 0.0): f64 = 1.0;
         /// Unstretched spring length [m].
         parameter s_rel0: f64 = 0.0;
         extends PartialCompliant { flange_a, flange_b, s_rel, f };
@@ -132,7 +132,7 @@ component! {
     #[type_name = "Translational.Damper"]
     pub struct Damper {
         /// Damping constant [N.s/m].
-        parameter d: f64 = 0.0;
+        parameter d(min = 0.0): f64 = 0.0;
         extends PartialCompliantWithRelativeStates { flange_a, flange_b, s_rel, v_rel, f };
         equation {
             f = d * v_rel;

@@ -23,7 +23,7 @@ use super::{Arena, Cmp, Func1, Func2, Id, NameResolver, Node, NodeMap, symbols};
 /// expression lives in the store of the model it was built for (see
 /// [`ExprStore`](super::ExprStore)): it stays valid while that model, or something
 /// compiled from it, exists, and using it afterwards panics.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Expr {
     /// [`VAR`], [`PARAM`] or [`TIME`] for a leaf, otherwise the number of the store.
     space: u32,

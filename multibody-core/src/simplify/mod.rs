@@ -308,6 +308,7 @@ fn simplify_flat(
     // Code generation.
     let t2 = Instant::now();
     let (observed, observed_names) = observed_outputs(
+        &mut flat.arena,
         &variables,
         &aliased.aliases.replaced,
         &aliased.aliases.derivative,
@@ -682,6 +683,33 @@ fn statistics(
     statistics
 }
 
+/// `r = ±x + offset` for one variable `x` and an offset of parameters and constants:
+/// the sign and `x` (an alias's replacement whose derivative is `±der(x)`).
+fn offset_alias(arena: &crate::expr::Arena, r: Id) -> Option<(f64, u32)> {
+    use crate::expr::Node;
+    match *arena.node(r) {
+        Node::Var(x) => Some((1.0, x)),
+        Node::Sum(ts, _) => {
+            let mut found = None;
+            for &(k, t) in arena.terms(ts) {
+                match *arena.node(t) {
+                    Node::Var(x) if found.is_none() => {
+                        let k = f64::from_bits(k);
+                        if k.abs() != 1.0 {
+                            return None;
+                        }
+                        found = Some((k, x));
+                    }
+                    Node::Param(_) => {}
+                    _ => return None,
+                }
+            }
+            found
+        }
+        _ => None,
+    }
+}
+
 /// Observed outputs of slots: the flat variables, then the derivative slots in slot
 /// order.
 struct OutputIndex<'r> {
@@ -802,6 +830,7 @@ fn static_group(
 /// derivative slot, as observed outputs, with their names: made when first asked for
 /// (compiling a large model would otherwise touch every variable's name once more).
 fn observed_outputs(
+    arena: &mut crate::expr::Arena,
     variables: &Arc<Vec<Variable>>,
     replaced: &[Option<Id>],
     derivative: &[Option<u32>],
@@ -834,16 +863,50 @@ fn observed_outputs(
         .collect();
     let alias_leaves: Vec<Id> = derivative_aliases.iter().map(|&(_, v)| out[v]).collect();
     out.extend(alias_leaves);
+    // The derivative of each kept variable that has one: its derivative slot, or the
+    // variable its derivative is an alias of.
+    let mut derivative_of_var: Vec<Option<Id>> = vec![None; variables.len()];
+    for s in reduced.slots.iter().filter(|s| s.order == 1) {
+        derivative_of_var[s.var] = Some(s.leaf);
+    }
+    for &(x, v) in &derivative_aliases {
+        derivative_of_var[x] = Some(out[v]);
+    }
+    // `der(a)` for an alias `a = ±x` of a variable with a derivative: `±der(x)`.
+    let mut alias_derivatives: Vec<(usize, Id)> = Vec::new();
+    for (a, r) in replaced.iter().enumerate() {
+        let Some(r) = *r else { continue };
+        if derivative[a].is_some() {
+            continue; // named above
+        }
+        let Some((sign, x)) = offset_alias(arena, r) else {
+            continue;
+        };
+        if let Some(d) = derivative_of_var.get(x as usize).copied().flatten() {
+            let value = if sign < 0.0 { arena.neg(d) } else { d };
+            alias_derivatives.push((a, value));
+        }
+    }
+    out.extend(alias_derivatives.iter().map(|&(_, d)| d));
     let variables = variables.clone();
     let names = crate::names::NameIndex::lazy(move || {
-        let mut names: Vec<crate::model::SharedText> =
-            Vec::with_capacity(variables.len() + derivatives.len() + derivative_aliases.len());
+        let mut names: Vec<crate::model::SharedText> = Vec::with_capacity(
+            variables.len()
+                + derivatives.len()
+                + derivative_aliases.len()
+                + alias_derivatives.len(),
+        );
         names.extend(variables.iter().map(|v| v.name.clone()));
         names.extend(derivatives.iter().map(|s| s.name(&variables).into()));
         names.extend(
             derivative_aliases
                 .iter()
                 .map(|&(x, _)| format!("der({})", variables[x].name).into()),
+        );
+        names.extend(
+            alias_derivatives
+                .iter()
+                .map(|&(a, _)| format!("der({})", variables[a].name).into()),
         );
         names
     });

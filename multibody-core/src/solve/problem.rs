@@ -807,6 +807,12 @@ impl<'a> DaeProblem<'a> {
             parameter_names: sys.parameter_index(),
             unknown_names: sys.unknown_index(),
             variables: sys.model.variables.clone(),
+            parameter_units: sys
+                .model
+                .parameters
+                .iter()
+                .map(|p| p.unit.clone())
+                .collect(),
             differential: sys
                 .sorted
                 .mass_matrix_diagonal

@@ -30,6 +30,8 @@ pub struct Solution {
     unknown_names: Arc<NameIndex>,
     /// The model's variables (their units), shared likewise.
     variables: Arc<Vec<Variable>>,
+    /// The unit of each tunable parameter, in the order of `parameter_names`.
+    parameter_units: Vec<SharedText>,
     differential: Vec<bool>,
     t: Vec<f64>,
     u: Vec<f64>,
@@ -67,6 +69,8 @@ pub(crate) struct SolutionParts {
     pub unknown_names: Arc<NameIndex>,
     /// The model's variables.
     pub variables: Arc<Vec<Variable>>,
+    /// The unit of each tunable parameter.
+    pub parameter_units: Vec<SharedText>,
     /// Per unknown: whether it is differential (interpolated by cubic Hermite).
     pub differential: Vec<bool>,
     /// The reported times, unknowns and derivatives (point-major).
@@ -94,6 +98,7 @@ impl Solution {
             parameter_names: p.parameter_names,
             unknown_names: p.unknown_names,
             variables: p.variables,
+            parameter_units: p.parameter_units,
             differential: p.differential,
             t: p.t,
             u: p.u,
@@ -211,16 +216,21 @@ impl Solution {
         })
     }
 
-    /// The unit of a variable as declared (`"rad"`, `"m/s"`; for `der(x)`, x's unit per
-    /// second), or `None` when it declares none.
+    /// The unit of a variable or tunable parameter as declared (`"rad"`, `"m/s"`; for
+    /// `der(x)`, x's unit per second), or `None` when it declares none.
     pub fn unit(&self, name: impl Named) -> Option<String> {
         let name = name.name();
         let (inner, per_second) = match derivative_of(&name) {
             Some(inner) => (inner, true),
             None => (&*name, false),
         };
-        let v = self.variables.iter().find(|v| &*v.name == inner)?;
-        let unit: &str = &v.unit;
+        let unit: &str = match self.variables.iter().find(|v| &*v.name == inner) {
+            Some(v) => &v.unit,
+            None => {
+                let j = self.parameter_names.position(inner)?;
+                self.parameter_units.get(j)?
+            }
+        };
         if unit.is_empty() {
             return None;
         }
@@ -310,6 +320,13 @@ impl Solution {
 
     /// The values of a variable (a path, `"j1.phi"` or `"der(j1.w)"`, or a handle's
     /// field, `model.j1.phi`) at the reported times.
+    ///
+    /// Every variable of the model can be read, and every tunable parameter (constant).
+    /// Derivatives `der(x)` can be read where the model computes them: for the states
+    /// and the other unknowns the integrator differentiates, for variables defined as
+    /// derivatives (`w = der(phi)` makes `der(phi)` readable), for the derivatives index
+    /// reduction introduced, and for aliases of all these (`x = ±y + parameters`). Other
+    /// derivatives are an error that lists the closest readable names.
     pub fn get(&self, name: impl Named) -> Result<Vec<f64>, SolutionError> {
         Ok(self.get_many(&[name])?.pop().expect("one series"))
     }
@@ -408,7 +425,13 @@ impl Solution {
         Ok((u, up, k))
     }
 
-    /// The value of a variable at any time of the solved interval (interpolated).
+    /// The value of a variable at any time of the solved interval, interpolated between
+    /// the two reported points around `t`: the unknowns by cubic Hermite interpolation
+    /// with their derivatives (algebraic ones linearly), and the variable computed from
+    /// them. Its accuracy is that of the spacing of the reported points: with
+    /// [`SolverOptions::output_times`](super::SolverOptions::output_times) coarser than
+    /// the integrator's steps, report the times you need instead, or every step (the
+    /// default).
     pub fn at(&self, name: impl Named, t: f64) -> Result<f64, SolutionError> {
         Ok(self.sample(&[name], &[t])?[0][0])
     }
