@@ -370,3 +370,93 @@ fn free_motion_torque_free_rotation_conserves_energy_and_momentum() {
         }
     }
 }
+
+/// FreeMotion's start from MSL's parameters: `angles_start` about {3, 1, 2} and
+/// `w_rel_a_start` (resolved in frame_a, here the world), with both orientation
+/// choices: frame_b's orientation and angular velocity at the start are the ones
+/// computed by hand (R = Rz(0.4) Rx(0.3) Ry(-0.2); w in frame_b = R' w), and both
+/// runs agree afterwards (torque-free asymmetric body). With Cardan angles the start
+/// value suffices (the angle rates, states, start from it); with quaternions the body's
+/// `w_a` carries the velocity states, so the start is given as `w_rel_a_fixed`.
+#[test]
+fn free_motion_starts_from_angles_start_and_w_rel_a_start() {
+    let rz = |a: f64| {
+        [
+            [a.cos(), -a.sin(), 0.0],
+            [a.sin(), a.cos(), 0.0],
+            [0.0, 0.0, 1.0],
+        ]
+    };
+    let rx = |a: f64| {
+        [
+            [1.0, 0.0, 0.0],
+            [0.0, a.cos(), -a.sin()],
+            [0.0, a.sin(), a.cos()],
+        ]
+    };
+    let ry = |a: f64| {
+        [
+            [a.cos(), 0.0, a.sin()],
+            [0.0, 1.0, 0.0],
+            [-a.sin(), 0.0, a.cos()],
+        ]
+    };
+    let mul = |a: [[f64; 3]; 3], b: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+    };
+    let r = mul(mul(rz(0.4), rx(0.3)), ry(-0.2));
+    let w_a = [2.0, -0.5, 0.7];
+    let w_b: [f64; 3] = std::array::from_fn(|i| (0..3).map(|k| r[k][i] * w_a[k]).sum());
+    let mut runs = Vec::new();
+    for states in [OrientationStates::Cardan, OrientationStates::Quaternion] {
+        let model = system! {
+            name: "free_start";
+            world = World { g: 0.0 };
+            fm = FreeMotion {
+                orientation_states: states,
+                angles_start: [0.4, 0.3, -0.2],
+                sequence_start: [3, 1, 2],
+                w_rel_a_start: w_a,
+                w_rel_a_fixed: states == OrientationStates::Quaternion,
+            };
+            body = Body { m: 1.0, I_11: 0.1, I_22: 0.2, I_33: 0.3 };
+            connect(world.frame_b, fm.frame_a);
+            connect(fm.frame_b, body.frame_a);
+        }
+        .into_system();
+        let sol = simulate(&model, &[], 3.0);
+        let t = rotation(&sol, "fm.frame_b");
+        let w = vector(&sol, "fm.w_rel_b");
+        for i in 0..3 {
+            close(
+                &format!("{states:?}: w_rel_b[{}]", i + 1),
+                0.0,
+                w[0][i],
+                w_b[i],
+                1e-9,
+            );
+            for j in 0..3 {
+                // T = R'.
+                close(
+                    &format!("{states:?}: T[{},{}]", i + 1, j + 1),
+                    0.0,
+                    t[0][i][j],
+                    r[j][i],
+                    1e-12,
+                );
+            }
+        }
+        runs.push(w);
+    }
+    for k in 0..runs[0].len() {
+        for i in 0..3 {
+            close(
+                "w_rel_b Cardan vs quaternion",
+                k as f64,
+                runs[0][k][i],
+                runs[1][k][i],
+                1e-7,
+            );
+        }
+    }
+}

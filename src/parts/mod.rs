@@ -4,7 +4,9 @@
 mod body;
 mod fixed;
 mod shapes;
+mod start_orientation;
 
 pub use body::*;
 pub use fixed::*;
 pub use shapes::*;
+pub(crate) use start_orientation::{StartOrientation, given};
