@@ -373,6 +373,37 @@ pub mod __private {
         VariableType, declare_signal, declare_signal3, member, signal_at, signal3_at,
     };
 
+    /// The start value of a vector variable, element by element: one value for all,
+    /// three numbers, three expressions, or (`Option`) none.
+    pub trait VectorStart {
+        /// The three start values, if any.
+        fn elements(self) -> Option<[Expr; 3]>;
+    }
+
+    impl VectorStart for f64 {
+        fn elements(self) -> Option<[Expr; 3]> {
+            Some([Expr::constant(self); 3])
+        }
+    }
+
+    impl VectorStart for [f64; 3] {
+        fn elements(self) -> Option<[Expr; 3]> {
+            Some(self.map(Expr::constant))
+        }
+    }
+
+    impl VectorStart for multibody_core::expr::Vec3 {
+        fn elements(self) -> Option<[Expr; 3]> {
+            Some(self.0)
+        }
+    }
+
+    impl<T: VectorStart> VectorStart for Option<T> {
+        fn elements(self) -> Option<[Expr; 3]> {
+            self.and_then(T::elements)
+        }
+    }
+
     /// The functions equations use (`der`, `sin`, ...).
     pub mod dsl {
         pub use crate::functions::*;

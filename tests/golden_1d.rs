@@ -12,6 +12,9 @@
 //!   parameters` (tested on the equation as written, so `s = flange.s - L/2` with a
 //!   tunable `L` is no alias, and a flow sum of three connectors is none either), and
 //!   `der(x) = v` makes `v` the derivative of `x` (a "derivative alias");
+//! - then, repeatedly, one more unknown per equation that the substitution of those
+//!   turned into `a = expression of parameters` (a node potential `p.v = n.v + V` with
+//!   `n` grounded, a flow sum whose other currents cancel);
 //! - a torn linear block of n equations with k tearing variables leaves k residuals and
 //!   counts its n - k other equations among the explicit assignments.
 
@@ -165,20 +168,22 @@ fn rc_circuit() {
     // {capacitor.n, source.n, ground.p} (2 + 1) = 20.
     // Aliases: the nine currents are one set (each one-port's two, the two 2-pin flow
     // sums) = 8; potentials 1 + 1 + 3 (the ground set is the constant 0); source.v = V:
-    // 14. `i = C der(v)` is no derivative alias. Left: 6 equations in 6 unknowns with
-    // capacitor.v the state, no index reduction, all explicit.
+    // 14. Then source.p.v = V (source.n is grounded), and the ground current, whose set's
+    // other currents are the loop current in and out: 16. `i = C der(v)` is no
+    // derivative alias. Left: 4 equations in 4 unknowns with capacitor.v the state, no
+    // index reduction, all explicit.
     let model = models_1d::rc_circuit();
     assert_golden(
         &model,
         &Golden {
             flat: 20,
-            aliases: 14,
+            aliases: 16,
             derivative_aliases: 0,
             differentiated: 0,
-            sorted: 6,
+            sorted: 4,
             states: &["capacitor.v"],
             algebraic: 0,
-            assignments: 6,
+            assignments: 4,
             diagonal: &[1.0],
             linear_inline: &[],
             nonlinear: &[],
@@ -255,25 +260,25 @@ fn resistor_bridge() {
     // four node sets of 3, 4, 4, 4 connectors (2 + 1, 3 + 1, 3 + 1, 3 + 1) = 44.
     // Aliases: two currents per one-port (14; every node has three or more connectors,
     // so no flow sum is an alias), node potentials 2 + 3 + 3 and the grounded node 4,
-    // source.v = V: 27. Left 17 equations, 17 unknowns besides the state c.v.
+    // source.v = V: 27; then the top node, source.p.v = V: 28. Left 16 equations, 16
+    // unknowns besides the state c.v.
     // With c.v known, the node voltages, the five resistor voltages and currents and the
     // capacitor current form one linear block of 13 equations (the two KCLs of the
     // inner nodes, c.v = va - vb, two per resistor); knowing one node voltage gives
-    // the rest in sequence, so one tearing variable. Outside: the top node (V), the
-    // source current, the ground current, der(c.v) = 4 assignments, plus the 12 torn
-    // ones = 16.
+    // the rest in sequence, so one tearing variable. Outside: the source current, the
+    // ground current, der(c.v) = 3 assignments, plus the 12 torn ones = 15.
     let model = models_1d::bridge();
     assert_golden(
         &model,
         &Golden {
             flat: 44,
-            aliases: 27,
+            aliases: 28,
             derivative_aliases: 0,
             differentiated: 0,
-            sorted: 17,
+            sorted: 16,
             states: &["c.v"],
             algebraic: 0,
-            assignments: 16,
+            assignments: 15,
             diagonal: &[1.0],
             linear_inline: &[(13, 1)],
             nonlinear: &[],
@@ -288,22 +293,23 @@ fn cubic_resistor_loop() {
     // (3 + 1) = 26.
     // Aliases: currents 8 within the one-ports plus the 2-pin flow sum (source and
     // cubic resistor carry one current) = 9; potentials 1 + 2 + 4 (grounded); source.v
-    // = 17. Left 9 equations. With c.v known: the middle node, the cubic resistor's
-    // voltage, then its current from v = R0 i + a i^3, a nonlinear block of one equation
-    // whose one unknown is the tearing variable and the only algebraic unknown; the
-    // other 8 are assignments. Unknowns: [the current, c.v], diagonal [0, 1].
+    // = 17; then the top node, source.p.v = V: 18. Left 8 equations. With c.v known:
+    // the middle node, the cubic resistor's voltage, then its current from
+    // v = R0 i + a i^3, a nonlinear block of one equation whose one unknown is the
+    // tearing variable and the only algebraic unknown; the other 7 are assignments.
+    // Unknowns: [the current, c.v], diagonal [0, 1].
     let model = models_1d::cubic_loop();
     let ssys = assert_golden(
         &model,
         &Golden {
             flat: 26,
-            aliases: 17,
+            aliases: 18,
             derivative_aliases: 0,
             differentiated: 0,
-            sorted: 9,
+            sorted: 8,
             states: &["c.v"],
             algebraic: 1,
-            assignments: 8,
+            assignments: 7,
             diagonal: &[0.0, 1.0],
             linear_inline: &[],
             nonlinear: &[(1, 1)],
@@ -328,23 +334,25 @@ fn dc_motor_example() {
     // the load angle set with gear.flange_b.phi and sensor.flange.phi (4);
     // {gear.flange_b.tau, load.flange_a.tau} (1); {load.flange_b.tau,
     // sensor.flange.tau} = 0 (2); signals: reference/u_s, sensor.w/u_m and
-    // {controller.y, source.v_ref, source.v} (4); the PI's xd = 0, d_part = 0 (2): 42.
+    // {controller.y, source.v_ref, source.v} (4); the PI's xd = 0, d_part = 0 (2): 42;
+    // then the ground current (the armature current in and out of the grounded set is
+    // one set): 43.
     // Derivative aliases: emf w, motor w and a, load w and a = 5 (the sensor's
-    // w = der(phi) meets the load's angle, which has its derivative already). Left 22.
+    // w = der(phi) meets the load's angle, which has its derivative already). Left 21.
     // Index reduction: emf.phi = motor.phi - phi0 once (1); the gear's phi_a, phi_b and
-    // phi_a = ratio phi_b twice (6) = 7; 29 sorted. States: motor angle and speed,
+    // phi_a = ratio phi_b twice (6) = 7; 28 sorted. States: motor angle and speed,
     // armature current, integrator. The accelerations and gear torques (mechanics of
     // motor, gear, load, three twice-differentiated gear equations) form one linear
-    // block of 6 with one tearing variable; the other 23 equations and the 5 torn ones
-    // are assignments (28).
+    // block of 6 with one tearing variable; the other 22 equations and the 5 torn ones
+    // are assignments (27).
     assert_golden(
         &example::dc_motor(),
         &Golden {
             flat: 69,
-            aliases: 42,
+            aliases: 43,
             derivative_aliases: 5,
             differentiated: 7,
-            sorted: 29,
+            sorted: 28,
             states: &[
                 "motor_inertia.phi",
                 "resistor.i",
@@ -352,7 +360,7 @@ fn dc_motor_example() {
                 "motor_inertia.w",
             ],
             algebraic: 0,
-            assignments: 28,
+            assignments: 27,
             diagonal: &[1.0, 1.0, 1.0, 1.0],
             linear_inline: &[(6, 1)],
             nonlinear: &[],

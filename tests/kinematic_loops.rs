@@ -128,10 +128,15 @@ fn planar_fourbar_dissipates_energy_and_keeps_its_loop_closed() {
     assert!(!ssys.unknowns().iter().any(|u| u.contains(".R.T[")));
     // At rtol 1e-8 IDA fails at t = 1.539 s, where the rhombus folds flat and the
     // closure's Jacobian in the loop angles it iterates on is singular (static state
-    // selection); at the default tolerance it steps across.
+    // selection); at rtol 1e-7 it steps across.
+    let options = SolverOptions {
+        rtol: 1e-7,
+        atol: 1e-9,
+        ..SolverOptions::default()
+    };
     let sol = DaeProblem::new(&ssys, &[("j1.phi", 0.1)], (0.0, 10.0))
         .unwrap()
-        .solve(&SolverOptions::default().with_output_interval(0.0, 10.0, 0.001))
+        .solve(&options.with_output_interval(0.0, 10.0, 0.001))
         .unwrap();
     let get = |name: &str| sol.get(name).unwrap();
     let (j1, j2, j3, j5) = (get("j1.phi"), get("j2.phi"), get("j3.phi"), get("j5.phi"));
@@ -171,9 +176,11 @@ fn planar_fourbar_dissipates_energy_and_keeps_its_loop_closed() {
     assert!(j2.iter().cloned().fold(f64::MAX, f64::min) < -3.0 * std::f64::consts::PI);
     // Energy balance: kinetic plus potential energy plus the work of the dampers,
     // int 0.1 (j1.w^2 + j2.w^2) dt (trapezoid on the 1 ms grid), stays at its start.
-    // Of the 32 J at the start the dampers take 42 J over the run. At rtol 1e-6 the
-    // balance holds to 3e-3 J (the trapezoid adds 1e-4); 1e-2 J is 2.5e-4 of the work,
-    // while a 1 % error in a damping constant or a mass moves it by 0.4 J or more.
+    // Of the 32 J at the start the dampers take 42 J over the run. At rtol 1e-7 the
+    // balance holds to 6e-4 J (the trapezoid adds 1e-4; at rtol 1e-6 it is 1e-2 J, an
+    // integration error that depends on the order of the unknowns); 3e-3 J is 7e-5 of
+    // the work, while a 1 % error in a damping constant or a mass moves it by 0.4 J or
+    // more.
     let e = energy(&sol, &bodies);
     let (w1, w2) = (get("j1.w"), get("j2.w"));
     let power: Vec<f64> = (0..w1.len())
@@ -184,7 +191,7 @@ fn planar_fourbar_dissipates_energy_and_keeps_its_loop_closed() {
         work += 0.5 * (sol.t()[k] - sol.t()[k - 1]) * (power[k] + power[k - 1]);
         let balance = e[k] + work - e[0];
         assert!(
-            balance.abs() < 1e-2,
+            balance.abs() < 3e-3,
             "energy balance off by {balance} J at {}",
             sol.t()[k]
         );
@@ -605,7 +612,10 @@ fn a_loop_that_cannot_close_names_its_joints_and_asks_for_guesses() {
     };
     let err = err.to_string();
     assert!(err.contains("did not converge"), "{err}");
-    assert!(err.contains("`j3`, `j5`"), "{err}");
+    assert!(
+        err.contains("`j3`, `j5`") || err.contains("`j5`, `j3`"),
+        "{err}"
+    );
     assert!(err.contains("new_with_guesses"), "{err}");
 }
 
@@ -635,7 +645,12 @@ fn initialization_iterates_on_joint_coordinates_only() {
             "{}: a loop needs iteration",
             ssys.name()
         );
-        assert_eq!(report.iteration_variables, expected, "{}", ssys.name());
+        // (In the order tearing picks them: compared as sets.)
+        let mut got = report.iteration_variables.clone();
+        got.sort();
+        let mut expected = expected;
+        expected.sort();
+        assert_eq!(got, expected, "{}", ssys.name());
         for v in &report.iteration_variables {
             assert!(
                 !v.contains(".R.") && !v.contains(".T["),

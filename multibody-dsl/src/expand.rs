@@ -135,6 +135,11 @@ fn default_doc(default: &Expr) -> TokenStream {
     quote!(#[doc = ""] #[doc = #text])
 }
 
+/// Whether a variable's type is a 3-vector (`Vec3`), whose start is set per element.
+fn is_vector_type(ty: &syn::Type) -> bool {
+    matches!(ty, syn::Type::Path(p) if p.path.segments.last().is_some_and(|s| s.ident == "Vec3"))
+}
+
 fn variable_modifiers(mods: &[Modifier]) -> TokenStream {
     let mut out = TokenStream::new();
     for m in mods {
@@ -253,7 +258,14 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
             } => {
                 let s = n.to_string();
                 let desc = doc_text(docs);
-                let mods = variable_modifiers(modifiers);
+                // A vector's start may differ per element: set after the declaration
+                // (`start = [a, b, c]`, or one value for all).
+                let vector = is_vector_type(ty);
+                let (element_starts, others): (Vec<Modifier>, Vec<Modifier>) = modifiers
+                    .iter()
+                    .cloned()
+                    .partition(|m| vector && m.key == "start");
+                let mods = variable_modifiers(&others);
                 let docs = docs_escaped(docs);
                 handle_fields.extend(quote!(#docs pub #n: #ty,));
                 handle_init
@@ -264,6 +276,16 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                         #p::Variable::new(#s).description(#desc) #unit #mods
                     );
                 ));
+                for m in element_starts {
+                    let v = &m.value;
+                    variables.extend(quote_spanned!(m.key.span()=>
+                        if let Some(__v) = #p::VectorStart::elements(#v) {
+                            for (__i, __v) in __v.into_iter().enumerate() {
+                                __s.set_start(&::std::format!("{}[{}]", #s, __i + 1), __v);
+                            }
+                        }
+                    ));
+                }
             }
             Item::Component {
                 docs,

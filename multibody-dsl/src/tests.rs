@@ -336,3 +336,22 @@ fn units_are_read_from_doc_comments() {
     assert_eq!(doc_unit("A sentence [with words] in brackets"), None);
     assert_eq!(doc_unit("No unit"), None);
 }
+
+#[test]
+fn a_vector_start_is_set_element_by_element() {
+    let d = parse_component(quote! {
+        struct Spin {
+            structural w0: [f64; 3] = [1.0, 2.0, 3.0];
+            variable w(start = w0, fixed = true): Vec3;
+            variable s(start = 0.5): Real;
+        }
+    })
+    .unwrap();
+    let code = crate::expand::component(&d).unwrap().to_string();
+    // The vector's start goes through `VectorStart` after the declaration, per element;
+    // its other attributes and a scalar's start stay on the builder.
+    assert!(code.contains("VectorStart :: elements (w0)"), "{code}");
+    assert!(code.contains(". fixed (true)"), "{code}");
+    assert!(code.contains(". start (0.5)"), "{code}");
+    assert!(!code.contains(". start (w0)"), "{code}");
+}

@@ -38,6 +38,10 @@ component! {
         variable w_a(state_priority = state_priority): Real;
         /// `der(phi_b)` \[rad/s\].
         variable w_b(state_priority = state_priority): Real;
+        /// `der(w_a)` \[rad/s2\].
+        variable a_a: Real;
+        /// `der(w_b)` \[rad/s2\].
+        variable a_b: Real;
         equation {
             connect(frame_a, revolute_a.frame_a);
             connect(revolute_a.frame_b, revolute_b.frame_a);
@@ -46,6 +50,8 @@ component! {
             phi_b = revolute_b.phi;
             w_a = revolute_a.w;
             w_b = revolute_b.w;
+            a_a = der(w_a);
+            a_b = der(w_b);
         }
     }
 }
@@ -75,6 +81,10 @@ component! {
         variable v(state_priority = state_priority): Real;
         /// `der(phi)` \[rad/s\].
         variable w(state_priority = state_priority): Real;
+        /// `der(v)` \[m/s2\].
+        variable a: Real;
+        /// `der(w)` \[rad/s2\].
+        variable wd: Real;
         equation {
             connect(frame_a, prismatic.frame_a);
             connect(prismatic.frame_b, revolute.frame_a);
@@ -83,6 +93,8 @@ component! {
             phi = revolute.phi;
             v = prismatic.v;
             w = revolute.w;
+            a = der(v);
+            wd = der(w);
         }
     }
 }
@@ -120,6 +132,12 @@ component! {
         variable v_y(state_priority = state_priority): Real;
         /// `der(phi)` \[rad/s\].
         variable w(state_priority = state_priority): Real;
+        /// `der(v_x)` \[m/s2\].
+        variable a_x: Real;
+        /// `der(v_y)` \[m/s2\].
+        variable a_y: Real;
+        /// `der(w)` \[rad/s2\].
+        variable wd: Real;
         equation {
             connect(frame_a, prismatic_x.frame_a);
             connect(prismatic_x.frame_b, prismatic_y.frame_a);
@@ -131,6 +149,9 @@ component! {
             v_x = prismatic_x.v;
             v_y = prismatic_y.v;
             w = revolute.w;
+            a_x = der(v_x);
+            a_y = der(v_y);
+            wd = der(w);
         }
     }
 }

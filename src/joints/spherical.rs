@@ -5,8 +5,10 @@ use crate::frames::{
     Orientation, Vec3, absolute_rotation, axes_rotations, inverse_rotation, quaternion_to_t,
     resolve_relative, resolve1, resolve2,
 };
+use crate::frames::{invalid_sequence, valid_sequence};
 use crate::interfaces::Frame;
 use crate::parts::OrientationStates;
+use crate::parts::{StartOrientation, given};
 use crate::prelude::*;
 
 /// Priority of joint orientation states when they are enforced.
@@ -119,10 +121,33 @@ component! {
     /// orientation (Cardan angles or a quaternion) as states. No forces act.
     #[type_name = "MultiBody.Joints.FreeMotion"]
     pub struct FreeMotion {
-        /// Orientation states.
+        /// Orientation states (MSL `useQuaternions`; default Cardan angles).
         structural orientation_states: OrientationStates = OrientationStates::Cardan;
-        /// Axis sequence of the angles.
+        /// Axis sequence of the angles (MSL `sequence_angleStates`), default {1, 2, 3}.
         structural sequence: [usize; 3] = [1, 2, 3];
+        /// Start orientation: angles about the axes of `sequence_start` that rotate
+        /// `frame_a` into `frame_b` \[rad\], default {0, 0, 0} (MSL `angles_start`).
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Axis sequence of `angles_start`, default {1, 2, 3} (MSL `sequence_start`).
+        structural sequence_start: [usize; 3] = [1, 2, 3];
+        /// Whether the start orientation is fixed at initialization, default false (MSL
+        /// `angles_fixed`).
+        structural angles_fixed: bool = false;
+        /// Start angular velocity of `frame_b` relative to `frame_a`, resolved in
+        /// `frame_a` \[rad/s\], default {0, 0, 0} (MSL `w_rel_a_start`). A start value
+        /// of `w_rel_b` (and of the angle rates with Cardan angles); with quaternions
+        /// the velocity states are usually the body's `w_a`, so set `w_rel_a_fixed` to
+        /// impose it.
+        structural w_rel_a_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `w_rel_a_start` is fixed at initialization, default false (MSL
+        /// `w_rel_a_fixed`).
+        structural w_rel_a_fixed: bool = false;
+        /// Start angular acceleration of `frame_b` relative to `frame_a`, resolved in
+        /// `frame_a` \[rad/s2\], default {0, 0, 0} (MSL `z_rel_a_start`).
+        structural z_rel_a_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `z_rel_a_start` is fixed at initialization, default false (MSL
+        /// `z_rel_a_fixed`).
+        structural z_rel_a_fixed: bool = false;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.
@@ -134,19 +159,29 @@ component! {
         /// `der(v_rel_a)` \[m/s2\].
         variable a_rel_a: Vec3;
         /// Angles rotating `frame_a` into `frame_b` (Cardan states) \[rad\].
-        variable phi(state_priority = ENFORCED): Vec3;
+        variable phi(start = given(StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).phi), fixed = angles_fixed && orientation_states == OrientationStates::Cardan, state_priority = ENFORCED): Vec3;
         /// Derivatives of the angles \[rad/s\].
-        variable phi_d(state_priority = ENFORCED): Vec3;
+        variable phi_d(start = given(StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).phi_d), state_priority = ENFORCED): Vec3;
         /// Second derivatives of the angles \[rad/s2\].
         variable phi_dd: Vec3;
         /// Angular velocity of `frame_b` relative to `frame_a`, resolved in `frame_b`
         /// \[rad/s\].
-        variable w_rel_b(state_priority = ENFORCED): Vec3;
+        variable w_rel_b(start = given(StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).w), fixed = w_rel_a_fixed, state_priority = ENFORCED): Vec3;
         /// Vector part of the relative quaternion (quaternion states).
-        variable q_v(state_priority = ENFORCED): Vec3;
+        variable q_v(start = given(StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).q_v()), fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = ENFORCED): Vec3;
         /// Scalar part of the relative quaternion.
-        variable q_4(start = 1.0, state_priority = ENFORCED): Real;
+        variable q_4(start = StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).q[3], fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = ENFORCED): Real;
+        initial_equation {
+            if z_rel_a_fixed {
+                der(w_rel_b) = Vec3::constant(StartOrientation::new(sequence_start, angles_start, sequence, w_rel_a_start, z_rel_a_start).z);
+            }
+        }
         equation {
+            assert(valid_sequence(sequence), invalid_sequence("sequence", sequence));
+            assert(
+                valid_sequence(sequence_start),
+                invalid_sequence("sequence_start", sequence_start)
+            );
             v_rel_a = der(r_rel_a);
             a_rel_a = der(v_rel_a);
             frame_b.r_0 = frame_a.r_0 + resolve1(&frame_a.R, r_rel_a);
@@ -155,7 +190,7 @@ component! {
             frame_b.f = Vec3::zero();
             frame_b.t = Vec3::zero();
             let n2 = q_v.dot(q_v) + q_4 * q_4;
-            let r_rel = relative_orientation(orientation_states, sequence, phi, phi_d, q_v, q_4, w_rel_b);
+            let r_rel = relative_orientation(orientation_states, crate::frames::usable_sequence(sequence), phi, phi_d, q_v, q_4, w_rel_b);
             match orientation_states {
                 OrientationStates::Cardan => {
                     phi_d = der(phi);

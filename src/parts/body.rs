@@ -1,5 +1,6 @@
 //! Rigid bodies with mass and inertia (MSL `Parts.Body`).
 
+use super::start_orientation::{StartOrientation, given};
 use crate::frames::{
     Mat3, Vec3, axes_rotations, invalid_sequence, quaternion_to_t, resolve1, resolve2,
     usable_sequence, valid_sequence,
@@ -8,7 +9,19 @@ use crate::interfaces::Frame;
 use crate::prelude::*;
 use crate::world::gravity_acceleration;
 
-/// How a free body (the root of its mechanism) describes its orientation.
+/// How a free body (the root of its mechanism) describes its orientation: MSL's
+/// `useQuaternions` (false: [`Cardan`](Self::Cardan), true:
+/// [`Quaternion`](Self::Quaternion)).
+///
+/// The default here is Cardan angles, where MSL's is quaternions: our quaternion states
+/// are not MSL's (a non-unit quaternion whose norm is driven back to 1, 7 states,
+/// instead of a unit quaternion with its constraint and 3 of 4 components chosen as
+/// states dynamically), and models written for this library give start values to the
+/// angles (`body.phi`, `body.phi_d`). Either way the start orientation and angular
+/// velocity are best given as MSL does, by `angles_start` (with `sequence_start`) and
+/// `w_0_start`, which set the start values of whichever states are used. Choose
+/// quaternions for bodies that tumble through every orientation (Cardan angles are
+/// singular where the middle angle is +-90 degrees).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum OrientationStates {
     /// Three angles about the axes of a sequence and their derivatives: 6 states,
@@ -60,10 +73,32 @@ component! {
         parameter I_31: f64 = 0.0;
         /// Element (3,2) of the inertia \[kg.m2\].
         parameter I_32: f64 = 0.0;
-        /// Orientation states when the body is a root.
+        /// Orientation states when the body is a root (MSL `useQuaternions`; default
+        /// Cardan angles, see [`OrientationStates`]).
         structural orientation_states: OrientationStates = OrientationStates::Cardan;
-        /// Axis sequence of the Cardan angles.
+        /// Axis sequence of the Cardan angles (MSL `sequence_angleStates`), default
+        /// {1, 2, 3}.
         structural sequence_angle_states: [usize; 3] = [1, 2, 3];
+        /// Start orientation: angles about the axes of `sequence_start` that rotate the
+        /// world frame into `frame_a` \[rad\], default {0, 0, 0} (MSL `angles_start`).
+        /// The start values of the orientation states (angles or quaternion) follow
+        /// from it.
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Axis sequence of `angles_start`, default {1, 2, 3} (MSL `sequence_start`).
+        structural sequence_start: [usize; 3] = [1, 2, 3];
+        /// Whether the start orientation is fixed at initialization, default false (MSL
+        /// `angles_fixed`; for a body that is the root of its orientation, a free body).
+        structural angles_fixed: bool = false;
+        /// Start angular velocity of `frame_a`, resolved in world \[rad/s\], default
+        /// {0, 0, 0} (MSL `w_0_start`).
+        structural w_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `w_0_start` is fixed at initialization, default false (MSL `w_0_fixed`).
+        structural w_0_fixed: bool = false;
+        /// Start angular acceleration of `frame_a`, resolved in world \[rad/s2\], default
+        /// {0, 0, 0} (MSL `z_0_start`).
+        structural z_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `z_0_start` is fixed at initialization, default false (MSL `z_0_fixed`).
+        structural z_0_fixed: bool = false;
         /// Priority of `r_0` and `v_0` as states (MSL: avoid).
         structural position_state_priority: f64 = StateSelect::Avoid.priority();
         /// Radius of the sphere drawn at the centre of mass \[m\] (0 hides it).
@@ -79,22 +114,26 @@ component! {
         /// Acceleration of `frame_a`, resolved in world \[m/s2\].
         variable a_0: Vec3;
         /// Angular velocity, resolved in `frame_a` \[rad/s\].
-        variable w_a(state_priority = StateSelect::Avoid.priority()): Vec3;
+        variable w_a(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).w), fixed = w_0_fixed, state_priority = StateSelect::Avoid.priority()): Vec3;
         /// Angular acceleration, resolved in `frame_a` \[rad/s2\].
-        variable z_a: Vec3;
+        variable z_a(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).z), fixed = z_0_fixed): Vec3;
         /// Gravity acceleration at the centre of mass, resolved in world \[m/s2\].
         variable g_0: Vec3;
         /// Orientation angles when the body is a root (0 otherwise) \[rad\].
-        variable phi(state_priority = 1000.0): Vec3;
+        variable phi(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi), fixed = angles_fixed && orientation_states == OrientationStates::Cardan, state_priority = 1000.0): Vec3;
         /// Derivatives of the angles \[rad/s\].
-        variable phi_d(state_priority = 1000.0): Vec3;
+        variable phi_d(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi_d), state_priority = 1000.0): Vec3;
         /// Second derivatives of the angles \[rad/s2\].
         variable phi_dd: Vec3;
         /// Vector part of the quaternion when the body is a root (0 otherwise).
-        variable q_v(state_priority = 1000.0): Vec3;
+        variable q_v(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q_v()), fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = 1000.0): Vec3;
         /// Scalar part of the quaternion when the body is a root (1 otherwise).
-        variable q_4(start = 1.0, state_priority = 1000.0): Real;
+        variable q_4(start = StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q[3], fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = 1000.0): Real;
         equation {
+            assert(
+                valid_sequence(sequence_start),
+                invalid_sequence("sequence_start", sequence_start)
+            );
             assert(
                 valid_sequence(sequence_angle_states),
                 invalid_sequence("sequence_angle_states", sequence_angle_states)

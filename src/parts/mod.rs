@@ -5,8 +5,10 @@ mod body;
 mod fixed;
 mod mass_properties;
 mod shapes;
+mod start_orientation;
 
 pub use body::*;
 pub use fixed::*;
 pub use mass_properties::MassProperties;
 pub use shapes::*;
+pub(crate) use start_orientation::{StartOrientation, given};

@@ -5,7 +5,8 @@
 //! representative (a fixed start value first, then the highest state priority, a start
 //! value, an internal variable rather than a connector's, the earliest declared) and the
 //! others become observed expressions `±representative`. A set that contains a constant
-//! equation is replaced by that constant entirely.
+//! equation is replaced by that constant entirely. Equations that the substitution turns
+//! into constants (`T_b = R_rel T_a` on a constant frame) are found by further passes.
 
 use crate::hash::HashMap;
 
@@ -142,130 +143,171 @@ impl SignedSets {
     }
 }
 
-/// Finds alias and derivative-alias equations of `flat` (after constant folding) and
-/// the substitution that removes them.
-pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
-    let nv = flat.variables.len();
-    let ne = flat.equations.len();
-    let mut sets = SignedSets {
-        parent: (0..nv as u32).collect(),
-        sign: vec![1.0; nv],
-        path: Vec::new(),
-    };
-    let mut constant: Vec<Option<Id>> = vec![None; nv];
-    let mut removed = vec![false; ne];
-    for (e, removed_e) in removed.iter_mut().enumerate() {
-        let r = flat.equations[e].residual;
-        match pattern(&mut flat.arena, r) {
-            Some(Pattern::Alias(a, b, s)) => {
-                let (ra, sa) = sets.find(a);
-                let (rb, sb) = sets.find(b);
-                if ra == rb {
-                    continue; // a loop of aliases: keep as an equation (it is redundant)
-                }
-                if constant[ra as usize].is_some() && constant[rb as usize].is_some() {
-                    continue;
-                }
-                // a = s b, a = sa ra, b = sb rb  =>  ra = sa s sb rb
-                sets.parent[ra as usize] = rb;
-                sets.sign[ra as usize] = sa * s * sb;
-                if let Some(c) = constant[ra as usize].take() {
-                    // ra = c  =>  rb = c / (sa s sb)
-                    let k = sa * s * sb;
-                    constant[rb as usize] = Some(flat.arena.scale(1.0 / k, c));
-                }
-                *removed_e = true;
-            }
-            Some(Pattern::Constant(a, v)) => {
-                let (ra, sa) = sets.find(a);
-                if constant[ra as usize].is_some() {
-                    continue;
-                }
-                // a = v, a = sa ra  =>  ra = sa v
-                constant[ra as usize] = Some(flat.arena.scale(sa, v));
-                *removed_e = true;
-            }
-            None => {}
-        }
-    }
-    // Members of each set, grouped by root (a counting sort: members of a root in
-    // increasing order, roots in increasing order).
-    let root_of: Vec<u32> = (0..nv as u32).map(|x| sets.find(x).0).collect();
-    let mut start = vec![0u32; nv + 1];
-    for &r in &root_of {
-        start[r as usize + 1] += 1;
-    }
-    for i in 0..nv {
-        start[i + 1] += start[i];
-    }
-    let mut grouped = vec![0u32; nv];
-    let mut fill = start.clone();
-    for (x, &r) in root_of.iter().enumerate() {
-        grouped[fill[r as usize] as usize] = x as u32;
-        fill[r as usize] += 1;
-    }
-    let mut replaced: Vec<Option<Id>> = vec![None; nv];
-    for root in 0..nv as u32 {
-        let ms = &grouped[start[root as usize] as usize..start[root as usize + 1] as usize];
-        if ms.is_empty() {
-            continue;
-        }
-        let sign_of = |sets: &mut SignedSets, x: u32| sets.find(x).1;
-        if let Some(c) = constant[root as usize] {
-            for &x in ms {
-                let s = sign_of(&mut sets, x);
-                let v = flat.arena.scale(s, c);
-                replaced[x as usize] = Some(v);
-            }
-            continue;
-        }
-        if ms.len() == 1 {
-            continue;
-        }
-        let rep = *ms
-            .iter()
-            .max_by(|&&a, &&b| {
-                let key = |x: u32| {
-                    let v = &flat.variables[x as usize];
-                    (
-                        v.fixed,
-                        v.kind != VarKind::Overdetermined,
-                        v.state_priority,
-                        v.start.is_some(),
-                        v.kind == VarKind::Internal,
-                    )
-                };
-                let (ka, kb) = (key(a), key(b));
-                ka.0.cmp(&kb.0)
-                    .then(ka.1.cmp(&kb.1))
-                    .then(ka.2.total_cmp(&kb.2))
-                    .then(ka.3.cmp(&kb.3))
-                    .then(ka.4.cmp(&kb.4))
-                    .then(b.cmp(&a))
-            })
-            .expect("non-empty set");
-        let s_rep = sign_of(&mut sets, rep);
-        let rep_leaf = flat.arena.var(rep);
-        let mut best_priority = flat.variables[rep as usize].state_priority;
-        let mut start = flat.starts[rep as usize];
-        for &x in ms {
-            if x == rep {
+/// The alias sets found so far: signed union-find and the constant of each set's root.
+struct Found {
+    sets: SignedSets,
+    constant: Vec<Option<Id>>,
+}
+
+impl Found {
+    /// Takes the equations `eqs` of `flat` that read `a = ±b` (when `aliases`) or
+    /// `a = constant` into the sets, marking them removed; the constants found, as
+    /// `(a, value of a)`, and whether anything was found.
+    fn scan(
+        &mut self,
+        flat: &mut FlatSystem,
+        eqs: impl Iterator<Item = usize>,
+        removed: &mut [bool],
+        aliases: bool,
+    ) -> (Vec<(u32, Id)>, bool) {
+        let mut any = false;
+        let mut constants = Vec::new();
+        for e in eqs {
+            let removed_e = &mut removed[e];
+            if *removed_e {
                 continue;
             }
-            // x = sx root, rep = srep root  =>  x = sx srep rep
-            let s = sign_of(&mut sets, x) * s_rep;
-            replaced[x as usize] = Some(flat.arena.scale(s, rep_leaf));
-            best_priority = best_priority.max(flat.variables[x as usize].state_priority);
-            if start.is_none()
-                && let Some(sx) = flat.starts[x as usize]
-            {
-                start = Some(flat.arena.scale(s, sx));
+            let r = flat.equations[e].residual;
+            match pattern(&mut flat.arena, r) {
+                Some(Pattern::Alias(a, b, s)) if aliases => {
+                    let (ra, sa) = self.sets.find(a);
+                    let (rb, sb) = self.sets.find(b);
+                    if ra == rb {
+                        continue; // a loop of aliases: keep as an equation (it is redundant)
+                    }
+                    if self.constant[ra as usize].is_some() && self.constant[rb as usize].is_some()
+                    {
+                        continue;
+                    }
+                    // a = s b, a = sa ra, b = sb rb  =>  ra = sa s sb rb
+                    self.sets.parent[ra as usize] = rb;
+                    self.sets.sign[ra as usize] = sa * s * sb;
+                    if let Some(c) = self.constant[ra as usize].take() {
+                        // ra = c  =>  rb = c / (sa s sb)
+                        let k = sa * s * sb;
+                        self.constant[rb as usize] = Some(flat.arena.scale(1.0 / k, c));
+                    }
+                    *removed_e = true;
+                    any = true;
+                }
+                Some(Pattern::Constant(a, v)) => {
+                    let (ra, sa) = self.sets.find(a);
+                    if self.constant[ra as usize].is_some() {
+                        continue;
+                    }
+                    // a = v, a = sa ra  =>  ra = sa v
+                    self.constant[ra as usize] = Some(flat.arena.scale(sa, v));
+                    *removed_e = true;
+                    any = true;
+                    constants.push((a, v));
+                }
+                _ => {}
             }
         }
-        flat.variables[rep as usize].state_priority = best_priority;
-        flat.starts[rep as usize] = start;
+        (constants, any)
     }
-    // Dense by the leaf's id: the pass over the whole model reads it in model order.
+
+    /// The replacement of every eliminated variable (its set's constant, or `±` the
+    /// set's representative), and per representative the state priority and start value
+    /// it takes over from its set.
+    fn replacements(&mut self, flat: &mut FlatSystem) -> (Vec<Option<Id>>, Vec<Merge>) {
+        let nv = flat.variables.len();
+        let sets = &mut self.sets;
+        // Members of each set, grouped by root (a counting sort: members of a root in
+        // increasing order, roots in increasing order).
+        let root_of: Vec<u32> = (0..nv as u32).map(|x| sets.find(x).0).collect();
+        let mut start = vec![0u32; nv + 1];
+        for &r in &root_of {
+            start[r as usize + 1] += 1;
+        }
+        for i in 0..nv {
+            start[i + 1] += start[i];
+        }
+        let mut grouped = vec![0u32; nv];
+        let mut fill = start.clone();
+        for (x, &r) in root_of.iter().enumerate() {
+            grouped[fill[r as usize] as usize] = x as u32;
+            fill[r as usize] += 1;
+        }
+        let mut replaced: Vec<Option<Id>> = vec![None; nv];
+        let mut merges = Vec::new();
+        for root in 0..nv as u32 {
+            let ms = &grouped[start[root as usize] as usize..start[root as usize + 1] as usize];
+            if ms.is_empty() {
+                continue;
+            }
+            let sign_of = |sets: &mut SignedSets, x: u32| sets.find(x).1;
+            if let Some(c) = self.constant[root as usize] {
+                for &x in ms {
+                    let s = sign_of(sets, x);
+                    let v = flat.arena.scale(s, c);
+                    replaced[x as usize] = Some(v);
+                }
+                continue;
+            }
+            if ms.len() == 1 {
+                continue;
+            }
+            let rep = *ms
+                .iter()
+                .max_by(|&&a, &&b| {
+                    let key = |x: u32| {
+                        let v = &flat.variables[x as usize];
+                        (
+                            v.fixed,
+                            v.kind != VarKind::Overdetermined,
+                            v.state_priority,
+                            v.start.is_some(),
+                            v.kind == VarKind::Internal,
+                        )
+                    };
+                    let (ka, kb) = (key(a), key(b));
+                    ka.0.cmp(&kb.0)
+                        .then(ka.1.cmp(&kb.1))
+                        .then(ka.2.total_cmp(&kb.2))
+                        .then(ka.3.cmp(&kb.3))
+                        .then(ka.4.cmp(&kb.4))
+                        .then(b.cmp(&a))
+                })
+                .expect("non-empty set");
+            let s_rep = sign_of(sets, rep);
+            let rep_leaf = flat.arena.var(rep);
+            let mut best_priority = flat.variables[rep as usize].state_priority;
+            let mut start = flat.starts[rep as usize];
+            for &x in ms {
+                if x == rep {
+                    continue;
+                }
+                // x = sx root, rep = srep root  =>  x = sx srep rep
+                let s = sign_of(sets, x) * s_rep;
+                replaced[x as usize] = Some(flat.arena.scale(s, rep_leaf));
+                best_priority = best_priority.max(flat.variables[x as usize].state_priority);
+                if start.is_none()
+                    && let Some(sx) = flat.starts[x as usize]
+                {
+                    start = Some(flat.arena.scale(s, sx));
+                }
+            }
+            merges.push(Merge {
+                rep,
+                priority: best_priority,
+                start,
+            });
+        }
+        (replaced, merges)
+    }
+}
+
+/// What the representative of an alias set takes over from its members.
+struct Merge {
+    rep: u32,
+    priority: f64,
+    start: Option<Id>,
+}
+
+/// The substitution of `replaced` as a map from leaves (dense by the leaf's id: the pass
+/// over the whole model reads it in model order).
+fn node_map(flat: &mut FlatSystem, replaced: &[Option<Id>]) -> NodeMap {
     let mut map = NodeMap::new();
     for (x, r) in replaced.iter().enumerate() {
         if let Some(r) = *r {
@@ -273,17 +315,121 @@ pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
             map.insert(leaf, r);
         }
     }
-    // Apply the substitution to the remaining equations, and note which of them now
-    // read `der(x) = v` (while each new residual is still in the cache; which ones are
-    // taken is decided below, once the derivative rules are known).
+    map
+}
+
+/// Per variable: the equations (not removed) whose residual contains it.
+fn occurrences(flat: &FlatSystem, removed: &[bool]) -> Vec<Vec<u32>> {
+    let mut occ: Vec<Vec<u32>> = vec![Vec::new(); flat.variables.len()];
+    let mut leaves = Vec::new();
+    for (e, eq) in flat.equations.iter().enumerate() {
+        if removed[e] {
+            continue;
+        }
+        flat.arena.leaves_into(eq.residual, &mut leaves);
+        for &l in &leaves {
+            // `der(x)` counts as an occurrence of x (a constant x has derivative 0).
+            let mut l = l;
+            while let Node::Der(x) = flat.arena.node(l) {
+                l = *x;
+            }
+            if let Node::Var(v) = flat.arena.node(l) {
+                occ[*v as usize].push(e as u32);
+            }
+        }
+    }
+    occ
+}
+
+/// Finds alias and derivative-alias equations of `flat` (after constant folding) and
+/// the substitution that removes them.
+///
+/// Substituting the aliases and constants found can turn further equations into
+/// aliases or constants: the orientation of a frame rotated by a constant rotation from
+/// a constant frame (`T_b = R_rel T_a` with `T_a` the world's identity) is a linear
+/// combination of constants, and so is its angular velocity. The search is repeated on
+/// the substituted equations until it finds nothing more, so such a frame is a constant
+/// (as a frame merely translated from a constant one is after one pass), and no
+/// equation is left that defines a constant orientation entry.
+pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
+    let nv = flat.variables.len();
+    let ne = flat.equations.len();
+    let mut found = Found {
+        sets: SignedSets {
+            parent: (0..nv as u32).collect(),
+            sign: vec![1.0; nv],
+            path: Vec::new(),
+        },
+        constant: vec![None; nv],
+    };
+    let mut removed = vec![false; ne];
+    found.scan(flat, 0..ne, &mut removed, true);
+    let (mut replaced, mut merges) = found.replacements(flat);
+    let mut map = node_map(flat, &replaced);
+    // Apply the substitution to the remaining equations.
     let mut memo = NodeMap::new();
-    let mut derivative_candidates: Vec<(usize, u32, u32)> = Vec::new();
+    let mut changed: Vec<usize> = Vec::new();
     for (e, eq) in flat.equations.iter_mut().enumerate() {
         if !removed[e] {
-            eq.residual = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
-            if let Some((x, v)) = derivative_pattern(&flat.arena, eq.residual) {
-                derivative_candidates.push((e, x, v));
+            let r = flat.arena.substitute_memo(eq.residual, &map, &mut memo);
+            if r != eq.residual {
+                changed.push(e);
             }
+            eq.residual = r;
+        }
+    }
+    // Later passes take constants only (an alias found there could tie an orientation
+    // entry to an ordinary variable, which would inherit its derivative rule), and
+    // substitute each new constant only into the equations that contain it.
+    let (mut new_constants, _) = found.scan(flat, changed.iter().copied(), &mut removed, false);
+    if !new_constants.is_empty() {
+        let occurrences = occurrences(flat, &removed);
+        let mut passes = 1usize;
+        while !new_constants.is_empty() {
+            passes += 1;
+            let mut step: HashMap<Id, Id> = HashMap::default();
+            let mut affected: Vec<usize> = Vec::new();
+            for &(a, v) in &new_constants {
+                let leaf = flat.arena.var(a);
+                step.insert(leaf, v);
+                affected.extend(occurrences[a as usize].iter().map(|&e| e as usize));
+            }
+            affected.sort_unstable();
+            affected.dedup();
+            let mut step_memo: HashMap<Id, Id> = HashMap::default();
+            changed.clear();
+            for e in affected {
+                if removed[e] {
+                    continue;
+                }
+                let old = flat.equations[e].residual;
+                let r = flat.arena.substitute_memo(old, &step, &mut step_memo);
+                if r != old {
+                    flat.equations[e].residual = r;
+                    changed.push(e);
+                }
+            }
+            new_constants = found
+                .scan(flat, changed.iter().copied(), &mut removed, false)
+                .0;
+        }
+        log::debug!("alias elimination: {passes} passes");
+        (replaced, merges) = found.replacements(flat);
+        map = node_map(flat, &replaced);
+        memo = NodeMap::new();
+    }
+    for m in merges {
+        flat.variables[m.rep as usize].state_priority = m.priority;
+        flat.starts[m.rep as usize] = m.start;
+    }
+    // Which remaining equations read `der(x) = v` (which ones are taken is decided
+    // below, once the derivative rules are known).
+    let mut derivative_candidates: Vec<(usize, u32, u32)> = Vec::new();
+    for (e, eq) in flat.equations.iter().enumerate() {
+        if !removed[e]
+            && let Some((x, v)) = derivative_pattern(&flat.arena, eq.residual)
+        {
+            derivative_candidates.push((e, x, v));
         }
     }
     // Derivative rules (der(x) is an expression, as for an orientation matrix): moved

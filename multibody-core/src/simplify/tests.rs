@@ -296,3 +296,34 @@ fn derivative_names_are_made_when_asked_and_match_the_slots() {
     let last = acc.len() - 1;
     assert!((acc[last] + 1f64.cos()).abs() < 1e-3, "{}", acc[last]);
 }
+
+#[test]
+fn constants_found_after_substitution_are_eliminated_too() {
+    // a = 1 and c = 2 are constants; b = 0.5 a + 0.3 c and then d = 3 b - a c are only
+    // once a and c are substituted (as a rotation of a constant frame is), and so is
+    // e = b + d in a third pass. Only the state x is left, with der(x) = e.
+    let mut s = System::new("chained_constants");
+    let x = s.variable(Variable::new("x").start(0.0).fixed(true));
+    let [a, b, c, d, e] = ["a", "b", "c", "d", "e"].map(|n| s.var(n));
+    s.equation(a, 1.0);
+    s.equation(c, 2.0);
+    s.equation(b, a * 0.5 + c * 0.3);
+    s.equation(d, b * 3.0 - a * c);
+    s.equation(e, b + d);
+    s.equation(x.der(), e);
+    let ssys = structural_simplify(&s).unwrap();
+    assert_eq!(ssys.unknowns(), ["x"]);
+    assert_eq!(
+        ssys.statistics().alias_variables,
+        5,
+        "{}",
+        ssys.statistics()
+    );
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    // b = 1.1, d = 3.3 - 2 = 1.3, e = 2.4.
+    assert!((sol.at("e", 1.0).unwrap() - 2.4).abs() < 1e-12);
+    assert!((sol.at("x", 2.0).unwrap() - 4.8).abs() < 1e-9);
+}
