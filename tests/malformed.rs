@@ -557,6 +557,26 @@ fn a_negative_moment_of_inertia_is_below_its_minimum() {
 }
 
 #[test]
+fn an_input_connected_to_nothing_is_named() {
+    // The torque source's input is left open: one equation short, and the message says
+    // which input is connected to nothing.
+    let m = system! {
+        name: "driven";
+        torque = Torque::default();
+        inertia = Inertia::default();
+        connect(torque.flange, inertia.flange_a);
+    };
+    assert_err(
+        run_default(&m),
+        Phase::Model,
+        &[
+            "is not balanced",
+            "inputs connected to nothing: torque.tau (connect an output to each",
+        ],
+    );
+}
+
+#[test]
 fn a_negative_stiffness_or_damping_is_below_its_minimum() {
     // MSL: c(final min = 0), d(final min = 0) on springs and dampers.
     let m = system! {

@@ -60,7 +60,48 @@ pub fn check_balance(flat: &FlatSystem) -> Result<(), ModelError> {
         unknowns: nv,
         undetermined,
         overdetermined,
+        unconnected_inputs: if ne < nv {
+            unconnected_inputs(flat)
+        } else {
+            Vec::new()
+        },
     })
+}
+
+/// Input signals that nothing outside their component sets: in no connection and in no
+/// equation of another component (their component only reads them).
+fn unconnected_inputs(flat: &FlatSystem) -> Vec<String> {
+    use super::flatten::Origin;
+    use super::variable::VarKind;
+    /// The component that owns a connector variable: its path without the connector
+    /// (`force.force[1]` -> `force`).
+    fn owner(name: &str) -> &str {
+        let name = name.split('[').next().unwrap_or(name);
+        name.rsplit_once('.').map_or("", |(o, _)| o)
+    }
+    let inputs: Vec<usize> = (0..flat.variables.len())
+        .filter(|&v| flat.variables[v].kind == VarKind::Input)
+        .collect();
+    if inputs.is_empty() {
+        return Vec::new();
+    }
+    let mut set = vec![false; flat.variables.len()];
+    for eq in &flat.equations {
+        let from_outside = |v: usize| match &eq.origin {
+            Origin::Component { path, .. } => path.as_str() != owner(&flat.variables[v].name),
+            _ => true,
+        };
+        for v in variables_in(&flat.arena, eq.residual) {
+            if flat.variables[v].kind == VarKind::Input && from_outside(v) {
+                set[v] = true;
+            }
+        }
+    }
+    inputs
+        .into_iter()
+        .filter(|&v| !set[v])
+        .map(|v| flat.variables[v].name.to_string())
+        .collect()
 }
 
 /// Evaluates parameter bindings (expressions of other parameters) in dependency order;

@@ -99,7 +99,7 @@ pub enum ModelError {
     #[error("parameter `{0}` has no value")]
     ParameterWithoutValue(String),
     /// As many equations as unknowns are needed.
-    #[error("{}", unbalanced_message(.model, .equations, .unknowns, .undetermined, .overdetermined))]
+    #[error("{}", unbalanced_message(.model, .equations, .unknowns, .undetermined, .overdetermined, .unconnected_inputs))]
     Unbalanced {
         /// Model name.
         model: String,
@@ -111,6 +111,8 @@ pub enum ModelError {
         undetermined: Vec<String>,
         /// Equations with nothing left to determine (as text).
         overdetermined: Vec<String>,
+        /// Input signals connected to nothing (when equations are missing).
+        unconnected_inputs: Vec<String>,
     },
 }
 
@@ -134,9 +136,17 @@ fn unbalanced_message(
     unknowns: &usize,
     under: &[String],
     over: &[String],
+    inputs: &[String],
 ) -> String {
     let mut m =
         format!("model `{model}` is not balanced: {equations} equations for {unknowns} unknowns");
+    if !inputs.is_empty() {
+        m.push_str(&format!(
+            "\n  inputs connected to nothing: {} (connect an output to each, or give it an \
+             equation)",
+            crate::names::list(inputs, 12)
+        ));
+    }
     if !under.is_empty() {
         m.push_str(&format!(
             "\n  under-determined: no equation is left for {}",

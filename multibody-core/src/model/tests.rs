@@ -217,7 +217,9 @@ fn overdetermined_model_names_its_equations_by_full_path() {
             unknowns,
             undetermined,
             overdetermined,
+            unconnected_inputs,
         } => {
+            assert!(unconnected_inputs.is_empty(), "over-determined: not asked");
             assert_eq!(model, "flat_over");
             assert_eq!((*equations, *unknowns), (12, 11));
             assert!(undetermined.is_empty(), "{err}");
