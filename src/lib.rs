@@ -225,8 +225,10 @@
 //! plot(&soft, &[model.inertia.phi, model.inertia.w], "oscillator.png")?;
 //! Figure::new()
 //!     .title("Two springs")
-//!     .overlay(&soft, &[model.inertia.phi], "c = 4")
+//!     .labelled_panel(&soft, &[model.inertia.phi], "c = 4")
 //!     .overlay(&stiff, &[model.inertia.phi], "c = 16")
+//!     .labelled_panel(&soft, &[model.inertia.w], "c = 4")
+//!     .overlay(&stiff, &[model.inertia.w], "c = 16")
 //!     .save("springs.png")?;
 //! # Ok::<(), multibody::Error>(())
 //! ```

@@ -64,6 +64,9 @@ fn values_parameters_and_results_by_handle_match_the_closed_form() {
     let t = sol.t()[k];
     assert!((w[k] + 1.5 * (3.0 * t).sin()).abs() < 1e-6);
     assert!((a[k] + 4.5 * (3.0 * t).cos()).abs() < 1e-5);
+    // Time reads like a variable, as in Modelica.
+    assert_eq!(sol.get("time").unwrap(), sol.t());
+    assert!((sol.at("time", 1.234).unwrap() - 1.234).abs() < 1e-12);
     let at = sol.at(m.inertia.phi, 1.234).unwrap();
     assert!((at - 0.5 * (3.0f64 * 1.234).cos()).abs() < 1e-5);
 }
@@ -298,6 +301,38 @@ fn plots_take_handles() {
     assert!(png_height(&titled) > png_height(&untitled_bytes));
     std::fs::remove_file(&path).ok();
     std::fs::remove_file(&untitled).ok();
+    // Two solutions compared panel by panel: each panel labels both curves, and its y
+    // axis carries the unit.
+    let stiff = DaeProblem::builder(&ssys, (0.0, 1.0))
+        .value(m.inertia.phi, 1.0)
+        .value(m.spring.c, 16.0)
+        .build()
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    let panels = Figure::new()
+        .labelled_panel(&sol, &[m.inertia.phi], "c = 4")
+        .overlay(&stiff, &[m.inertia.phi], "c = 16")
+        .labelled_panel(&sol, &[m.inertia.w], "c = 4")
+        .overlay(&stiff, &[m.inertia.w], "c = 16")
+        .into_panels()
+        .unwrap();
+    let labels: Vec<Vec<&str>> = panels
+        .iter()
+        .map(|p| p.series.iter().map(|s| s.label.as_str()).collect())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            ["inertia.phi (c = 4)", "inertia.phi (c = 16)"],
+            ["inertia.w (c = 4)", "inertia.w (c = 16)"]
+        ]
+    );
+    assert_eq!(panels[0].y_label, "[rad]");
+    assert_eq!(panels[1].y_label, "[rad/s]");
+    // The stiffer spring's curve is the other solution's: phi = cos(4 t) at the end.
+    let last = panels[0].series[1].y.last().copied().unwrap();
+    assert!((last - 4.0f64.cos()).abs() < 1e-4, "{last}");
 }
 
 /// The height of a PNG image, from its IHDR chunk.

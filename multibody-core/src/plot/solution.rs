@@ -88,6 +88,15 @@ impl Figure {
         self
     }
 
+    /// Starts a panel with variables of `sol`, each labelled `name (label)`: the first
+    /// of several solutions compared in a panel, the others added with
+    /// [`overlay`](Self::overlay).
+    pub fn labelled_panel<N: Named>(mut self, sol: &Solution, names: &[N], label: &str) -> Self {
+        self = self.panel::<&str>(sol, &[]);
+        self.add(sol, names, Some(label));
+        self
+    }
+
     /// Adds variables of another solution to the last panel (the first one when there
     /// is none yet), each labelled `name (label)`.
     pub fn overlay<N: Named>(mut self, sol: &Solution, names: &[N], label: &str) -> Self {

@@ -172,10 +172,14 @@ impl Solution {
 
     /// Where `name`'s values are in the buffer [`Self::evaluate`] fills: an output of the
     /// observed function; past those, the derivative of a differential unknown,
-    /// `der(x)`; past those, a tunable parameter (constant within a segment).
+    /// `der(x)`; past those, a tunable parameter (constant within a segment); last,
+    /// `time`.
     fn lookup(&self, name: &str) -> Result<usize, SolutionError> {
         if let Some(i) = self.names.position(name) {
             return Ok(i);
+        }
+        if name == "time" {
+            return Ok(self.out_len() - 1);
         }
         let outputs = self.observed.n_outputs();
         let derivative = derivative_of(name);
@@ -264,6 +268,7 @@ impl Solution {
         for j in 0..self.layout.n_params {
             out[outputs + n + j] = inputs[self.layout.param(j)];
         }
+        out[outputs + n + self.layout.n_params] = t;
         self.observed
             .eval(inputs, ws, &mut out[..outputs])
             .map_err(|e| {
@@ -273,9 +278,9 @@ impl Solution {
     }
 
     /// The length of the buffer [`Self::evaluate`] fills: the observed outputs, the
-    /// derivatives of the unknowns and the parameters.
+    /// derivatives of the unknowns, the parameters and the time.
     fn out_len(&self) -> usize {
-        self.observed.n_outputs() + self.layout.n + self.layout.n_params
+        self.observed.n_outputs() + self.layout.n + self.layout.n_params + 1
     }
 
     /// Outputs `idx` of an evaluation at `t` (`result` of [`Self::evaluate`]) appended
@@ -321,7 +326,8 @@ impl Solution {
     /// The values of a variable (a path, `"j1.phi"` or `"der(j1.w)"`, or a handle's
     /// field, `model.j1.phi`) at the reported times.
     ///
-    /// Every variable of the model can be read, and every tunable parameter (constant).
+    /// Every variable of the model can be read, every tunable parameter (constant), and
+    /// `time` (the reported times, as [`Solution::t`]).
     /// Derivatives `der(x)` can be read where the model computes them: for the states
     /// and the other unknowns the integrator differentiates, for variables defined as
     /// derivatives (`w = der(phi)` makes `der(phi)` readable), for the derivatives index
