@@ -557,6 +557,25 @@ fn a_negative_moment_of_inertia_is_below_its_minimum() {
 }
 
 #[test]
+fn two_outputs_connected_are_named() {
+    let m = system! {
+        name: "clash";
+        s1 = Constant { k: 1.0 };
+        s2 = Constant { k: 2.0 };
+        torque = Torque::default();
+        inertia = Inertia::default();
+        connect(s1.y, s2.y);
+        connect(s1.y, torque.tau);
+        connect(torque.flange, inertia.flange_a);
+    };
+    assert_err(
+        run_default(&m),
+        Phase::Model,
+        &["in `connect(s1.y, s2.y)`: `s1.y` and `s2.y` are both outputs"],
+    );
+}
+
+#[test]
 fn an_input_connected_to_nothing_is_named() {
     // The torque source's input is left open: one equation short, and the message says
     // which input is connected to nothing.

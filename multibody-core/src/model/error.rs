@@ -43,6 +43,19 @@ pub enum ModelError {
         /// Its class.
         class_b: String,
     },
+    /// `connect()` joins two outputs: both would determine the same signal.
+    #[error(
+        "in `{connection}`: `{a}` and `{b}` are both outputs, and an output is the only \
+         thing that determines its signal: connect an output to inputs"
+    )]
+    TwoOutputs {
+        /// The connect statement.
+        connection: String,
+        /// First output.
+        a: String,
+        /// Second output.
+        b: String,
+    },
     /// The virtual connection graph of overdetermined connectors (orientations) is
     /// wrong: two roots in one mechanism, a part with no root, a loop of rigid branches.
     #[error("{message}")]

@@ -726,6 +726,17 @@ impl<'s> Flattener<'_, 's> {
                 // itself: its path goes past this system's by more than one name.
                 let inside_a = c.a.contains('.');
                 let inside_b = c.b.contains('.');
+                // Two outputs of sub-components would both determine the signal.
+                let output =
+                    |c: &ConnectorInfo| c.vars.first().is_some_and(|v| v.1 == VarKind::Output);
+                if inside_a && inside_b && output(ca) && output(cb) {
+                    self.errors.push(ModelError::TwoOutputs {
+                        connection: text(),
+                        a: join_path(&s.path, &c.a),
+                        b: join_path(&s.path, &c.b),
+                    });
+                    continue;
+                }
                 let pairs: Vec<((usize, VarKind), (usize, VarKind))> = ca
                     .vars
                     .iter()
