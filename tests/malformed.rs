@@ -557,6 +557,26 @@ fn a_negative_moment_of_inertia_is_below_its_minimum() {
 }
 
 #[test]
+fn a_structural_parameter_given_to_the_problem_says_so() {
+    let m = pendulum_with_axis([0.0, 0.0, 1.0]);
+    assert_err(
+        run(&m, &[("j1.n", 1.0)], (0.0, 1.0), &SolverOptions::default()),
+        Phase::Init,
+        &["`j1.n` is a structural parameter, fixed when the model was built"],
+    );
+    assert_err(
+        run(
+            &m,
+            &[("j1.n[2]", 1.0)],
+            (0.0, 1.0),
+            &SolverOptions::default(),
+        ),
+        Phase::Init,
+        &["`j1.n[2]` is a structural parameter, fixed when the model was built"],
+    );
+}
+
+#[test]
 fn two_outputs_connected_are_named() {
     let m = system! {
         name: "clash";

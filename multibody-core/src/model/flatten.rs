@@ -135,6 +135,9 @@ pub struct FlatSystem {
     pub stores: Vec<ExprStore>,
     /// Conditions on parameters, checked when a problem sets their values.
     pub assertions: Vec<FlatAssertion>,
+    /// Full names of the numeric structural parameters (fixed when the model was
+    /// built), for messages.
+    pub structural: Vec<String>,
 }
 
 /// Names of a flat system's leaves.
@@ -389,6 +392,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             cuts: graph.cuts.clone(),
             stores: stores.clone(),
             assertions: Vec::new(),
+            structural: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -537,6 +541,11 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
 
 impl<'s> Flattener<'_, 's> {
     fn declare(&mut self, s: &'s System) {
+        self.flat.structural.extend(
+            s.structural
+                .iter()
+                .map(|(name, _)| join_path(&s.path, name)),
+        );
         let mut conn_vars = Vec::new();
         for v in &s.variables {
             let idx = self.flat.variables.len() as u32;

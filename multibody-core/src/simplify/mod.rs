@@ -377,6 +377,7 @@ fn simplify_flat(
         parameter_values,
         arena,
         assertions,
+        structural,
         ..
     } = flat;
     Ok(Simplified::Done(Box::new(SimplifiedSystem {
@@ -389,6 +390,7 @@ fn simplify_flat(
             assertions,
             parameter_values,
             starts,
+            structural,
         },
         reduction: Reduction {
             replaced: aliased.aliases.replaced,

@@ -173,6 +173,8 @@ pub(crate) struct ModelData {
     pub(crate) parameter_values: Vec<Option<Id>>,
     /// Start values per flat variable (expressions of parameters).
     pub(crate) starts: Vec<Option<Id>>,
+    /// Full names of the structural parameters (for messages).
+    pub(crate) structural: Vec<String>,
 }
 
 /// The index-reduced equations and the variables they are in: what alias elimination,

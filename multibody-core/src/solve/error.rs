@@ -67,6 +67,18 @@ pub enum InitError {
         /// Names close to it.
         suggestions: Vec<String>,
     },
+    /// A name given to the problem is a structural parameter, fixed when the model was
+    /// built.
+    #[error(
+        "model `{model}`: `{name}` is a structural parameter, fixed when the model was \
+         built: give it in the component's value and simplify the model again"
+    )]
+    StructuralParameter {
+        /// Model name.
+        model: String,
+        /// The name given.
+        name: String,
+    },
     /// A component's condition on its parameters does not hold for the problem's
     /// values.
     #[error("model `{model}`: {type_name} `{component}`: {message} ({values})")]

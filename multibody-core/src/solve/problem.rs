@@ -352,6 +352,13 @@ impl<'a> DaeProblem<'a> {
         let var_index = index(&mut sys.model.variables.iter().map(|v| &*v.name));
         let param_index = index(&mut sys.model.parameters.iter().map(|p| &*p.name));
         let unknown = |name: &str| {
+            let base = name.split('[').next().unwrap_or(name);
+            if sys.model.structural.iter().any(|s| s == base) {
+                return InitError::StructuralParameter {
+                    model: sys.model.name.clone(),
+                    name: name.to_string(),
+                };
+            }
             let candidates = sys
                 .model
                 .variables
