@@ -509,7 +509,6 @@ fn assert_same_motion(a: &(Vec<f64>, Vec<f64>, Solution), b: &(Vec<f64>, Vec<f64
 /// against the same model with the signals rotated by 30 degrees about z by hand and
 /// resolved in the world.
 #[test]
-#[ignore = "needs FixedRotation fix: FixedRotation directly after Fixed is structurally singular"]
 fn msl_force_and_torque_example() {
     let fixed_rotation = FixedRotation {
         n: EZ,
@@ -521,8 +520,7 @@ fn msl_force_and_torque_example() {
     assert_same_motion(&exact, &by_hand);
 }
 
-/// MSL's model with the FixedRotation replaced by a frame that compiles today: a free
-/// body turned 30 degrees about z (Cardan angles (0, 0, 30 deg)), which falls under
+/// MSL's model with the FixedRotation replaced by a moving frame: a free body turned 30 degrees about z (Cardan angles (0, 0, 30 deg)), which falls under
 /// gravity without turning (gravity acts at its centre of mass, and frame_resolve takes
 /// no torque), so its frame has MSL's orientation at every instant. Against the same
 /// model with the signals rotated by hand and resolved in the world.
