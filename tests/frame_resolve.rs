@@ -520,9 +520,10 @@ fn msl_force_and_torque_example() {
     assert_same_motion(&exact, &by_hand);
 }
 
-/// MSL's model with the FixedRotation replaced by a moving frame: a free body turned 30 degrees about z (Cardan angles (0, 0, 30 deg)), which falls under
-/// gravity without turning (gravity acts at its centre of mass, and frame_resolve takes
-/// no torque), so its frame has MSL's orientation at every instant. Against the same
+/// MSL's model with the FixedRotation replaced by a moving frame: a free body turned
+/// 30 degrees about z (Cardan angles (0, 0, 30 deg)), which falls under gravity without
+/// turning (gravity acts at its centre of mass, and frame_resolve takes no torque), so
+/// its frame has MSL's orientation at every instant. Against the same
 /// model with the signals rotated by hand and resolved in the world.
 #[test]
 fn msl_force_and_torque_example_resolved_in_a_falling_rotated_frame() {
