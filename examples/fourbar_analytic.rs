@@ -16,8 +16,8 @@ system! {
     pub fn fourbar_analytic() -> FourbarAnalytic {
         name: "fourbar_analytic";
         world = World::default();
-        j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755983, state_priority: 12.0, radius: 0.1 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        j1 = Revolute { n: [1.0, 0.0, 0.0], w_start: 5.235987755983, state_priority: 12.0, radius: 0.1 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s_start: -0.2 };
         b1 = BodyShape { r: [0.0, 0.5, 0.1], radius: 0.03 };
         b2 = BodyShape { r: [0.0, 0.2, 0.0], radius: 0.03 };
         b3 = FixedTranslation { r: [1.2, 0.0, 0.0], radius: 0.0 };

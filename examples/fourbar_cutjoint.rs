@@ -22,8 +22,8 @@ system! {
     pub fn fourbar_with_cut(cut: Option<&str>) -> Fourbar2 {
         name: "fourbar2";
         world = World::default();
-        j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755982989, state_priority: 10.0, radius: 0.1 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2, iscut: cut == Some("j2") };
+        j1 = Revolute { n: [1.0, 0.0, 0.0], w_start: 5.235987755982989, state_priority: 10.0, radius: 0.1 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s_start: -0.2, iscut: cut == Some("j2") };
         b1 = BodyShape { r: [0.0, 0.5, 0.1], radius: 0.03 };
         b2 = BodyShape { r: [0.0, 0.2, 0.0], radius: 0.03 };
         b3 = BodyShape { r: [-1.0, 0.3, 0.1], radius: 0.03 };

@@ -298,8 +298,8 @@ pub fn remove_planar_redundancy(model: &System, loops: &[Vec<String>]) -> System
         let default = Revolute::default();
         let cut = Revolute {
             n: vector(old, "n", default.n),
-            phi0: scalar("phi0", default.phi0),
-            w0: scalar("w0", default.w0),
+            phi_start: scalar("phi_start", default.phi_start),
+            w_start: scalar("w_start", default.w_start),
             state_priority: scalar("state_priority", default.state_priority),
             iscut: true,
             planar_cut: true,

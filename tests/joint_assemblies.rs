@@ -408,7 +408,7 @@ system! {
         name: "FourbarSphericalSpherical";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0], state_priority: 1000.0 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s_start: -0.2 };
         b0 = FixedTranslation { r: [1.2, 0.0, 0.0] };
         b1 = BodyShape { r: [0.0, 0.5, 0.1] };
         b2 = BodyShape { r: [0.0, 0.2, 0.0] };

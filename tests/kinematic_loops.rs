@@ -518,7 +518,7 @@ fn analytic_fourbar_iterates_on_the_prismatic_coordinate() {
     // I = 0.001 + 0.25^2 + 0.05^2 = 0.066 and height 0.25 cos - 0.05 sin; b2 (1 kg)
     // slides at v on a level line. So
     //   1/2 (0.066 + (ds/dphi)^2) w^2 + g (0.25 cos phi - 0.05 sin phi) = E0,
-    // with w(0) = j1.w0 = 5.235987755983: w = sqrt(2 (E0 - V(phi)) / M(phi)) > 0.
+    // with w(0) = j1.w_start = 5.235987755983: w = sqrt(2 (E0 - V(phi)) / M(phi)) > 0.
     let inertia = |phi: f64| 0.066 + prismatic_of_crank(phi).1.powi(2);
     let height = |phi: f64| G * (0.25 * phi.cos() - 0.05 * phi.sin());
     let w0 = 5.235987755983;

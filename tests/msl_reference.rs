@@ -165,8 +165,8 @@ fn fourbar1(cut_j5: bool) -> System {
     system! {
         name: "Fourbar1";
         world = World::default();
-        j1 = Revolute { n: [1.0, 0.0, 0.0], w0: 5.235987755982989, state_priority: 1000.0 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        j1 = Revolute { n: [1.0, 0.0, 0.0], w_start: 5.235987755982989, state_priority: 1000.0 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s_start: -0.2 };
         b1 = BodyCylinder { r: [0.0, 0.5, 0.1], diameter: Some(0.05) };
         b2 = BodyCylinder { r: [0.0, 0.2, 0.0], diameter: Some(0.05) };
         b3 = BodyCylinder { r: [-1.0, 0.3, 0.1], diameter: Some(0.05) };
@@ -223,7 +223,7 @@ fn fourbar2_universal_spherical() {
         name: "Fourbar2";
         world = World::default();
         j1 = Revolute { n: [1.0, 0.0, 0.0], state_priority: 1000.0 };
-        j2 = Prismatic { n: [1.0, 0.0, 0.0], s0: -0.2 };
+        j2 = Prismatic { n: [1.0, 0.0, 0.0], s_start: -0.2 };
         b1 = BodyCylinder { r: [0.0, 0.5, 0.1], diameter: Some(0.05) };
         b2 = BodyCylinder { r: [0.0, 0.2, 0.0], diameter: Some(0.05) };
         b0 = FixedTranslation { r: [1.2, 0.0, 0.0] };

@@ -225,7 +225,7 @@ fn a_spring_is_drawn_as_a_helix_between_its_frames() {
     let model = system! {
         name: "spring_mass";
         world = World::default();
-        slider = Prismatic { n: [0.0, 1.0, 0.0], s0: -0.6, width: 0.0 };
+        slider = Prismatic { n: [0.0, 1.0, 0.0], s_start: -0.6, width: 0.0 };
         body = Body { m: 1.0, radius: 0.08 };
         spring = Spring { c: 30.0, s_unstretched: 0.4, radius: 0.06 };
         connect(world.frame_b, slider.frame_a);

@@ -17,9 +17,9 @@ component! {
         /// Translation axis, resolved in `frame_a` (and `frame_b`).
         structural n: [f64; 3] = [1.0, 0.0, 0.0];
         /// Start value of the distance \[m\].
-        structural s0: f64 = 0.0;
+        structural s_start: f64 = 0.0;
         /// Start value of the velocity \[m/s\].
-        structural v0: f64 = 0.0;
+        structural v_start: f64 = 0.0;
         /// Priority of `s` and `v` as states.
         structural state_priority: f64 = JOINT_STATE_PRIORITY;
         /// The joint is a cut of a kinematic loop.
@@ -39,9 +39,9 @@ component! {
         /// Housing flange, fixed at position 0.
         connector support: translational::Flange;
         /// Distance from `frame_a` to `frame_b` along `n` \[m\].
-        variable s(start = s0, state_priority = state_priority): Real;
+        variable s(start = s_start, state_priority = state_priority): Real;
         /// Velocity `der(s)` \[m/s\].
-        variable v(start = v0, state_priority = state_priority): Real;
+        variable v(start = v_start, state_priority = state_priority): Real;
         /// Acceleration `der(v)` \[m/s2\].
         variable a: Real;
         /// Driving force in the direction of the axis \[N\].

@@ -20,9 +20,9 @@ component! {
         /// Rotation axis, resolved in `frame_a` (and `frame_b`).
         structural n: [f64; 3] = [0.0, 0.0, 1.0];
         /// Start value of the angle \[rad\].
-        structural phi0: f64 = 0.0;
+        structural phi_start: f64 = 0.0;
         /// Start value of the angular velocity \[rad/s\].
-        structural w0: f64 = 0.0;
+        structural w_start: f64 = 0.0;
         /// Priority of `phi` and `w` as states.
         structural state_priority: f64 = JOINT_STATE_PRIORITY;
         /// The joint is a cut of a kinematic loop.
@@ -49,9 +49,9 @@ component! {
         /// Housing flange, fixed at angle 0.
         connector support: rotational::Flange;
         /// Rotation angle from `frame_a` to `frame_b` about `n` \[rad\].
-        variable phi(start = phi0, state_priority = state_priority): Real;
+        variable phi(start = phi_start, state_priority = state_priority): Real;
         /// Angular velocity `der(phi)` \[rad/s\].
-        variable w(start = w0, state_priority = state_priority): Real;
+        variable w(start = w_start, state_priority = state_priority): Real;
         /// Angular acceleration `der(w)` \[rad/s2\].
         variable a: Real;
         /// Driving torque in the direction of the axis \[N.m\].
