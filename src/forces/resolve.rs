@@ -52,3 +52,33 @@ pub enum ResolveInB {
     /// The frame connected to `frame_resolve`.
     FrameResolve,
 }
+
+use crate::frames::{Vec3, null_rotation};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+
+component! {
+    /// The `frame_resolve` connector of a component whose vectors may be resolved in a
+    /// frame of the user's choice, with what that frame receives (the base of the signal
+    /// forces and the sensors): nothing when `used`, otherwise MSL's `ZeroPosition`
+    /// (a root parallel to the world at its origin).
+    #[type_name = "MultiBody.Interfaces.ResolveFrame"]
+    pub struct ResolveFrame {
+        /// Whether the component's vectors are resolved in the frame connected to
+        /// `frame_resolve` (default false).
+        structural used: bool = false;
+        /// The frame the component's vectors are resolved in when `resolve_in` is
+        /// `FrameResolve` (connect it then; otherwise leave it unconnected).
+        connector frame_resolve: Frame;
+        equation {
+            if used {
+                frame_resolve.f = Vec3::zero();
+                frame_resolve.t = Vec3::zero();
+            } else {
+                root(frame_resolve.R);
+                frame_resolve.R = null_rotation();
+                frame_resolve.r_0 = Vec3::zero();
+            }
+        }
+    }
+}

@@ -1,9 +1,9 @@
 //! Forces and torques between two frames given by signals (MSL `Forces.Force`,
 //! `Forces.Torque`, `Forces.ForceAndTorque`).
 
-use super::resolve::ResolveIn;
+use super::resolve::{ResolveFrame, ResolveIn};
 use crate::blocks::RealInput3;
-use crate::frames::{Orientation, Vec3, null_rotation, resolve1, resolve2};
+use crate::frames::{Orientation, Vec3, resolve1, resolve2};
 use crate::interfaces::Frame;
 use crate::prelude::*;
 
@@ -43,9 +43,7 @@ component! {
         connector frame_a: Frame;
         /// Frame receiving the force.
         connector frame_b: Frame;
-        /// The frame `force` is resolved in with `resolve_in = FrameResolve` (connect it
-        /// then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveIn::FrameResolve };
         equation {
             let r_in = resolving_frame(resolve_in, &frame_a.R, &frame_b.R, &frame_resolve.R);
             let f_b_0 = -to_world(r_in, *force);
@@ -58,14 +56,6 @@ component! {
             let r_0 = frame_b.r_0 - frame_a.r_0;
             Vec3::zero() = frame_a.f + resolve2(&frame_a.R, f_b_0);
             Vec3::zero() = frame_a.t + resolve2(&frame_a.R, r_0.cross(f_b_0));
-            if resolve_in == ResolveIn::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -85,9 +75,7 @@ component! {
         connector frame_a: Frame;
         /// Frame receiving the torque.
         connector frame_b: Frame;
-        /// The frame `torque` is resolved in with `resolve_in = FrameResolve` (connect it
-        /// then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveIn::FrameResolve };
         equation {
             let r_in = resolving_frame(resolve_in, &frame_a.R, &frame_b.R, &frame_resolve.R);
             let t_b_0 = -to_world(r_in, *torque);
@@ -99,14 +87,6 @@ component! {
                 frame_b.t = resolve2(&frame_b.R, t_b_0);
             }
             Vec3::zero() = frame_a.t + resolve2(&frame_a.R, t_b_0);
-            if resolve_in == ResolveIn::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -130,9 +110,7 @@ component! {
         connector frame_a: Frame;
         /// Frame receiving the force and the torque.
         connector frame_b: Frame;
-        /// The frame `force` and `torque` are resolved in with `resolve_in =
-        /// FrameResolve` (connect it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveIn::FrameResolve };
         equation {
             let r_in = resolving_frame(resolve_in, &frame_a.R, &frame_b.R, &frame_resolve.R);
             let f_b_0 = -to_world(r_in, *force);
@@ -147,14 +125,6 @@ component! {
             let r_0 = frame_b.r_0 - frame_a.r_0;
             Vec3::zero() = frame_a.f + resolve2(&frame_a.R, f_b_0);
             Vec3::zero() = frame_a.t + resolve2(&frame_a.R, t_b_0 + r_0.cross(f_b_0));
-            if resolve_in == ResolveIn::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }

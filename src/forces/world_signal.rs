@@ -2,9 +2,9 @@
 //! (MSL `Forces.WorldForce`, `Forces.WorldTorque`, `Forces.WorldForceAndTorque`). As in
 //! MSL, the reaction on the world is not computed.
 
-use super::resolve::ResolveInB;
+use super::resolve::{ResolveFrame, ResolveInB};
 use crate::blocks::RealInput3;
-use crate::frames::{Orientation, Vec3, null_rotation, resolve_relative, resolve2};
+use crate::frames::{Orientation, Vec3, resolve_relative, resolve2};
 use crate::interfaces::Frame;
 use crate::prelude::*;
 
@@ -36,24 +36,10 @@ component! {
         connector force: RealInput3;
         /// Frame receiving the force.
         connector frame_b: Frame;
-        /// The frame `force` is resolved in with `resolve_in = FrameResolve` (connect it
-        /// then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveInB::FrameResolve };
         equation {
-            if resolve_in == ResolveInB::FrameB {
-                frame_b.f = -force;
-            } else {
-                frame_b.f = -in_frame_b(resolve_in, *force, &frame_b.R, &frame_resolve.R);
-            }
+            frame_b.f = -in_frame_b(resolve_in, *force, &frame_b.R, &frame_resolve.R);
             frame_b.t = Vec3::zero();
-            if resolve_in == ResolveInB::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -71,24 +57,10 @@ component! {
         connector torque: RealInput3;
         /// Frame receiving the torque.
         connector frame_b: Frame;
-        /// The frame `torque` is resolved in with `resolve_in = FrameResolve` (connect it
-        /// then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveInB::FrameResolve };
         equation {
-            if resolve_in == ResolveInB::FrameB {
-                frame_b.t = -torque;
-            } else {
-                frame_b.t = -in_frame_b(resolve_in, *torque, &frame_b.R, &frame_resolve.R);
-            }
+            frame_b.t = -in_frame_b(resolve_in, *torque, &frame_b.R, &frame_resolve.R);
             frame_b.f = Vec3::zero();
-            if resolve_in == ResolveInB::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -109,25 +81,10 @@ component! {
         connector torque: RealInput3;
         /// Frame receiving the force and the torque.
         connector frame_b: Frame;
-        /// The frame `force` and `torque` are resolved in with `resolve_in =
-        /// FrameResolve` (connect it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveInB::FrameResolve };
         equation {
-            if resolve_in == ResolveInB::FrameB {
-                frame_b.f = -force;
-                frame_b.t = -torque;
-            } else {
-                frame_b.f = -in_frame_b(resolve_in, *force, &frame_b.R, &frame_resolve.R);
-                frame_b.t = -in_frame_b(resolve_in, *torque, &frame_b.R, &frame_resolve.R);
-            }
-            if resolve_in == ResolveInB::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
+            frame_b.f = -in_frame_b(resolve_in, *force, &frame_b.R, &frame_resolve.R);
+            frame_b.t = -in_frame_b(resolve_in, *torque, &frame_b.R, &frame_resolve.R);
         }
     }
 }

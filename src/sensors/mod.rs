@@ -3,12 +3,13 @@
 
 use crate::blocks::{RealOutput, RealOutput3};
 use crate::frames::{
-    Vec3, axes_rotations_angles_expr, invalid_sequence, null_rotation, relative_rotation,
-    resolve_relative, resolve1, resolve2, usable_sequence, valid_sequence,
+    Vec3, axes_rotations_angles_expr, invalid_sequence, relative_rotation, resolve_relative,
+    resolve1, resolve2, usable_sequence, valid_sequence,
 };
 use crate::interfaces::Frame;
 use crate::prelude::*;
 
+use crate::forces::ResolveFrame;
 pub use crate::forces::{ResolveIn, ResolveInA};
 
 component! {
@@ -22,9 +23,7 @@ component! {
         connector frame_a: Frame;
         /// Second frame.
         connector frame_b: Frame;
-        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
-        /// it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveIn::FrameResolve };
         /// `frame_b.r_0 - frame_a.r_0`, resolved as chosen \[m\].
         connector r_rel: RealOutput3;
         equation {
@@ -39,14 +38,6 @@ component! {
             frame_a.t = Vec3::zero();
             frame_b.f = Vec3::zero();
             frame_b.t = Vec3::zero();
-            if resolve_in == ResolveIn::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -64,9 +55,7 @@ component! {
         connector frame_a: Frame;
         /// Second frame.
         connector frame_b: Frame;
-        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
-        /// it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveIn::FrameResolve };
         /// Relative velocity, resolved as chosen \[m/s\].
         connector v_rel: RealOutput3;
         /// Relative position resolved in `frame_a` \[m\].
@@ -88,14 +77,6 @@ component! {
             frame_a.t = Vec3::zero();
             frame_b.f = Vec3::zero();
             frame_b.t = Vec3::zero();
-            if resolve_in == ResolveIn::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -109,9 +90,7 @@ component! {
         structural resolve_in: ResolveInA = ResolveInA::FrameA;
         /// The frame.
         connector frame_a: Frame;
-        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
-        /// it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveInA::FrameResolve };
         /// Its position \[m\].
         connector r: RealOutput3;
         equation {
@@ -122,14 +101,6 @@ component! {
             };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
-            if resolve_in == ResolveInA::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
@@ -144,9 +115,7 @@ component! {
         structural resolve_in: ResolveInA = ResolveInA::FrameA;
         /// The frame.
         connector frame_a: Frame;
-        /// The frame the result is resolved in with `resolve_in = FrameResolve` (connect
-        /// it then; otherwise leave it unconnected).
-        connector frame_resolve: Frame;
+        extends ResolveFrame { frame_resolve } = ResolveFrame { used: resolve_in == ResolveInA::FrameResolve };
         /// Its velocity \[m/s\].
         connector v: RealOutput3;
         /// Velocity resolved in world \[m/s\].
@@ -160,14 +129,6 @@ component! {
             };
             frame_a.f = Vec3::zero();
             frame_a.t = Vec3::zero();
-            if resolve_in == ResolveInA::FrameResolve {
-                frame_resolve.f = Vec3::zero();
-                frame_resolve.t = Vec3::zero();
-            } else {
-                root(frame_resolve.R);
-                frame_resolve.R = null_rotation();
-                frame_resolve.r_0 = Vec3::zero();
-            }
         }
     }
 }
