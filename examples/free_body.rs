@@ -1,6 +1,7 @@
 //! A free body tumbling in the world without gravity, once with Cardan angles and once
-//! with a (non-unit) quaternion as orientation states: the same motion, the quaternion
-//! version without the gimbal lock of the angles.
+//! with a quaternion (the default) as orientation states: the same motion, the
+//! quaternion version without the gimbal lock of the angles. The start angular velocity
+//! is given as in MSL, by `w_0_start` (resolved in the world).
 //!
 //! `cargo run --release --example free_body` writes `free_body.png`.
 
@@ -13,7 +14,8 @@ system! {
     pub fn free_body(states: OrientationStates) -> FreeBody {
         name: "free_body";
         world = World { g: 0.0 };
-        body = Body { m: 1.0, I_11: 0.1, I_22: 0.2, I_33: 0.3, orientation_states: states };
+        body = Body { m: 1.0, I_11: 0.1, I_22: 0.2, I_33: 0.3, orientation_states: states,
+                      w_0_start: [0.05, 2.0, 0.0] };
     }
 }
 
@@ -26,11 +28,7 @@ fn main() -> Result<(), multibody::Error> {
             ssys.unknowns().len(),
             ssys.unknowns()
         );
-        let start: Vec<(&str, f64)> = match states {
-            OrientationStates::Cardan => vec![("body.phi_d[1]", 0.05), ("body.phi_d[2]", 2.0)],
-            OrientationStates::Quaternion => vec![("body.w_a[1]", 0.05), ("body.w_a[2]", 2.0)],
-        };
-        let sol = DaeProblem::new(&ssys, &start, (0.0, 10.0))?.solve(&SolverOptions {
+        let sol = DaeProblem::new(&ssys, &[], (0.0, 10.0))?.solve(&SolverOptions {
             rtol: 1e-8,
             atol: 1e-10,
             ..SolverOptions::default()

@@ -49,7 +49,7 @@ fn spherical_pendulum_in_steady_conical_motion() {
     let model = system! {
         name: "conical_pendulum";
         world = World::default();
-        joint = Spherical { state: true, sequence: [2, 3, 1] };
+        joint = Spherical { state: true, sequence: [2, 3, 1], orientation_states: OrientationStates::Cardan };
         body = Body { m: 1.0, r_CM: [0.0, -1.0, 0.0] };
         connect(world.frame_b, joint.frame_a);
         connect(joint.frame_b, body.frame_a);

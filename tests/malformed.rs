@@ -7,7 +7,8 @@ use multibody::Error;
 use multibody::blocks::Constant;
 use multibody::joints::{Prismatic, Revolute, Universal, UniversalSpherical};
 use multibody::parts::{
-    Body, BodyBox, BodyCylinder, BodyShape, FixedRotation, FixedTranslation, RotationType,
+    Body, BodyBox, BodyCylinder, BodyShape, FixedRotation, FixedTranslation, OrientationStates,
+    RotationType,
 };
 use multibody::prelude::*;
 use multibody::rotational::{
@@ -1372,7 +1373,7 @@ fn an_over_constrained_loop_of_two_universal_joints_is_named_without_a_panic() {
     let m = system! {
         name: "universal_loop";
         world = World::default();
-        b1 = Body { r_CM: [0.1, 0.0, 0.0] };
+        b1 = Body { r_CM: [0.1, 0.0, 0.0], orientation_states: OrientationStates::Cardan };
         u1 = Universal::default();
         b2 = Body { r_CM: [0.2, 0.0, 0.0] };
         ft = FixedTranslation { r: [0.0, 0.3, 0.0] };

@@ -54,7 +54,7 @@ fn spherical_pendulum_with_joint_states_has_six_unknowns() {
     let model = system! {
         name: "spherical_pendulum";
         world = World::default();
-        joint = Spherical { state: true };
+        joint = Spherical { state: true, orientation_states: OrientationStates::Cardan };
         body = Body { m: 1.0, r_CM: [0.5, 0.0, 0.0] };
         connect(world.frame_b, joint.frame_a);
         connect(joint.frame_b, body.frame_a);

@@ -46,8 +46,8 @@ component! {
     pub struct Spherical {
         /// Use the joint's relative rotation as states (MSL `enforceStates`).
         structural state: bool = false;
-        /// Orientation states with `state`.
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Orientation states with `state` (MSL `useQuaternions`; default a quaternion).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
         /// Axis sequence of the angles.
         structural sequence: [usize; 3] = [1, 2, 3];
         /// Radius when rendered \[m\].
@@ -121,8 +121,8 @@ component! {
     /// orientation (Cardan angles or a quaternion) as states. No forces act.
     #[type_name = "MultiBody.Joints.FreeMotion"]
     pub struct FreeMotion {
-        /// Orientation states (MSL `useQuaternions`; default Cardan angles).
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Orientation states (MSL `useQuaternions`; default a quaternion).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
         /// Axis sequence of the angles (MSL `sequence_angleStates`), default {1, 2, 3}.
         structural sequence: [usize; 3] = [1, 2, 3];
         /// Start orientation: angles about the axes of `sequence_start` that rotate

@@ -10,26 +10,29 @@ use crate::prelude::*;
 use crate::world::gravity_acceleration;
 
 /// How a free body (the root of its mechanism) describes its orientation: MSL's
-/// `useQuaternions` (false: [`Cardan`](Self::Cardan), true:
-/// [`Quaternion`](Self::Quaternion)).
+/// `useQuaternions` (true, the default: [`Quaternion`](Self::Quaternion); false:
+/// [`Cardan`](Self::Cardan)).
 ///
-/// The default here is Cardan angles, where MSL's is quaternions: our quaternion states
-/// are not MSL's (a non-unit quaternion whose norm is driven back to 1, 7 states,
-/// instead of a unit quaternion with its constraint and 3 of 4 components chosen as
-/// states dynamically), and models written for this library give start values to the
-/// angles (`body.phi`, `body.phi_d`). Either way the start orientation and angular
-/// velocity are best given as MSL does, by `angles_start` (with `sequence_start`) and
-/// `w_0_start`, which set the start values of whichever states are used. Choose
-/// quaternions for bodies that tumble through every orientation (Cardan angles are
-/// singular where the middle angle is +-90 degrees).
+/// Quaternions are never singular, so a body may tumble through every orientation.
+/// Ours are not quite MSL's: MSL keeps a unit quaternion with its constraint and
+/// chooses 3 of its 4 components as states dynamically (6 orientation states with
+/// `w_a`); here the quaternion is not normalized by a constraint but its norm is driven
+/// back to 1 by its kinematics (7 states, as Multibody.jl), which keeps the model free
+/// of nonlinear systems and state switching and integrates more accurately at the same
+/// tolerance. Either way the start orientation and angular velocity are best given as
+/// MSL does, by `angles_start` (with `sequence_start`) and `w_0_start`, which set the
+/// start values of whichever states are used. Cardan angles (`phi`, `phi_d`, 6 states)
+/// are singular where the middle angle is +-90 degrees (gimbal lock); choose them when
+/// the angles themselves are wanted and the motion stays away from that.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum OrientationStates {
     /// Three angles about the axes of a sequence and their derivatives: 6 states,
     /// singular where the middle rotation is +-90 degrees (gimbal lock).
-    #[default]
     Cardan,
     /// A non-unit quaternion (4 states, no constraint: its norm is driven back to 1) and
-    /// the angular velocity: 7 states, never singular (as Multibody.jl).
+    /// the angular velocity: 7 states, never singular (as Multibody.jl). The default,
+    /// as MSL's.
+    #[default]
     Quaternion,
 }
 
@@ -74,8 +77,8 @@ component! {
         /// Element (3,2) of the inertia \[kg.m2\].
         parameter I_32: f64 = 0.0;
         /// Orientation states when the body is a root (MSL `useQuaternions`; default
-        /// Cardan angles, see [`OrientationStates`]).
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// a quaternion, see [`OrientationStates`]).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
         /// Axis sequence of the Cardan angles (MSL `sequence_angleStates`), default
         /// {1, 2, 3}.
         structural sequence_angle_states: [usize; 3] = [1, 2, 3];

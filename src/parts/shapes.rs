@@ -12,8 +12,27 @@ use crate::interfaces::Frame;
 use crate::numeric::{norm, sub};
 use crate::prelude::*;
 
-/// The [`Body`] with given mass properties.
-fn body_of(p: MassProperties, states: OrientationStates) -> Body {
+/// The [`Body`] of a shape component: its orientation states and start values (fields
+/// of the same names on every shape), the rest defaults.
+macro_rules! root_start {
+    ($shape:expr) => {
+        Body {
+            orientation_states: $shape.orientation_states,
+            sequence_angle_states: $shape.sequence_angle_states,
+            angles_start: $shape.angles_start,
+            sequence_start: $shape.sequence_start,
+            angles_fixed: $shape.angles_fixed,
+            w_0_start: $shape.w_0_start,
+            w_0_fixed: $shape.w_0_fixed,
+            z_0_start: $shape.z_0_start,
+            z_0_fixed: $shape.z_0_fixed,
+            ..Body::default()
+        }
+    };
+}
+
+/// `start` (see `root_start!`) with the given mass properties.
+fn body_of(p: MassProperties, start: Body) -> Body {
     Body {
         m: p.m,
         r_CM: p.r_cm,
@@ -23,8 +42,7 @@ fn body_of(p: MassProperties, states: OrientationStates) -> Body {
         I_21: p.inertia[1][0],
         I_31: p.inertia[2][0],
         I_32: p.inertia[2][1],
-        orientation_states: states,
-        ..Body::default()
+        ..start
     }
 }
 
@@ -45,8 +63,28 @@ component! {
         structural I_diag: [f64; 3] = [0.001, 0.001, 0.001];
         /// Inertia off-diagonal elements `(I_21, I_31, I_32)` \[kg.m2\].
         structural I_offdiag: [f64; 3] = [0.0, 0.0, 0.0];
-        /// Orientation states if the body is the root of its mechanism.
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Orientation states if the body is the root of its mechanism (MSL
+        /// `useQuaternions`; default a quaternion, see [`OrientationStates`]).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
+        /// Axis sequence of Cardan angle states, default {1, 2, 3} (as [`Body`]'s).
+        structural sequence_angle_states: [usize; 3] = [1, 2, 3];
+        /// Start orientation of `frame_a`: angles about the axes of `sequence_start` that
+        /// rotate the world frame into it \[rad\], default {0, 0, 0} (as [`Body`]'s).
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Axis sequence of `angles_start`, default {1, 2, 3}.
+        structural sequence_start: [usize; 3] = [1, 2, 3];
+        /// Whether the start orientation is fixed at initialization, default false.
+        structural angles_fixed: bool = false;
+        /// Start angular velocity of `frame_a`, resolved in world \[rad/s\], default
+        /// {0, 0, 0}.
+        structural w_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `w_0_start` is fixed at initialization, default false.
+        structural w_0_fixed: bool = false;
+        /// Start angular acceleration of `frame_a`, resolved in world \[rad/s2\],
+        /// default {0, 0, 0}.
+        structural z_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `z_0_start` is fixed at initialization, default false.
+        structural z_0_fixed: bool = false;
         /// Radius when rendered \[m\] (0 hides it).
         structural radius: f64 = 0.02;
         /// Colour when rendered, RGB in 0..1 (MSL's body colour).
@@ -67,9 +105,8 @@ component! {
             I_21: self.I_offdiag[0],
             I_31: self.I_offdiag[1],
             I_32: self.I_offdiag[2],
-            orientation_states: self.orientation_states,
             radius: 0.0,
-            ..Body::default()
+            ..root_start!(self)
         };
         equation {
             connect(frame_a, translation.frame_a);
@@ -113,8 +150,28 @@ component! {
         structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// Density \[kg/m3\] (steel).
         structural density: f64 = 7700.0;
-        /// Orientation states if the body is the root of its mechanism.
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Orientation states if the body is the root of its mechanism (MSL
+        /// `useQuaternions`; default a quaternion, see [`OrientationStates`]).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
+        /// Axis sequence of Cardan angle states, default {1, 2, 3} (as [`Body`]'s).
+        structural sequence_angle_states: [usize; 3] = [1, 2, 3];
+        /// Start orientation of `frame_a`: angles about the axes of `sequence_start` that
+        /// rotate the world frame into it \[rad\], default {0, 0, 0} (as [`Body`]'s).
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Axis sequence of `angles_start`, default {1, 2, 3}.
+        structural sequence_start: [usize; 3] = [1, 2, 3];
+        /// Whether the start orientation is fixed at initialization, default false.
+        structural angles_fixed: bool = false;
+        /// Start angular velocity of `frame_a`, resolved in world \[rad/s\], default
+        /// {0, 0, 0}.
+        structural w_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `w_0_start` is fixed at initialization, default false.
+        structural w_0_fixed: bool = false;
+        /// Start angular acceleration of `frame_a`, resolved in world \[rad/s2\],
+        /// default {0, 0, 0}.
+        structural z_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `z_0_start` is fixed at initialization, default false.
+        structural z_0_fixed: bool = false;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.
@@ -122,7 +179,7 @@ component! {
         /// The rigid translation from `frame_a` to `frame_b`.
         component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0, color: self.color };
         /// The mass, at `frame_a`.
-        component body: Body = body_of(self.mass_properties(), self.orientation_states);
+        component body: Body = body_of(self.mass_properties(), root_start!(self));
         equation {
             for (holds, message) in self.checks() {
                 assert(holds, message);
@@ -226,8 +283,28 @@ component! {
         structural color: [f64; 3] = crate::render::BODY_COLOR;
         /// Density \[kg/m3\] (steel).
         structural density: f64 = 7700.0;
-        /// Orientation states if the body is the root of its mechanism.
-        structural orientation_states: OrientationStates = OrientationStates::Cardan;
+        /// Orientation states if the body is the root of its mechanism (MSL
+        /// `useQuaternions`; default a quaternion, see [`OrientationStates`]).
+        structural orientation_states: OrientationStates = OrientationStates::Quaternion;
+        /// Axis sequence of Cardan angle states, default {1, 2, 3} (as [`Body`]'s).
+        structural sequence_angle_states: [usize; 3] = [1, 2, 3];
+        /// Start orientation of `frame_a`: angles about the axes of `sequence_start` that
+        /// rotate the world frame into it \[rad\], default {0, 0, 0} (as [`Body`]'s).
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Axis sequence of `angles_start`, default {1, 2, 3}.
+        structural sequence_start: [usize; 3] = [1, 2, 3];
+        /// Whether the start orientation is fixed at initialization, default false.
+        structural angles_fixed: bool = false;
+        /// Start angular velocity of `frame_a`, resolved in world \[rad/s\], default
+        /// {0, 0, 0}.
+        structural w_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `w_0_start` is fixed at initialization, default false.
+        structural w_0_fixed: bool = false;
+        /// Start angular acceleration of `frame_a`, resolved in world \[rad/s2\],
+        /// default {0, 0, 0}.
+        structural z_0_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether `z_0_start` is fixed at initialization, default false.
+        structural z_0_fixed: bool = false;
         /// First frame.
         connector frame_a: Frame;
         /// Second frame.
@@ -235,7 +312,7 @@ component! {
         /// The rigid translation from `frame_a` to `frame_b`.
         component translation: FixedTranslation = FixedTranslation { r: self.r, radius: 0.0, color: self.color };
         /// The mass, at `frame_a`.
-        component body: Body = body_of(self.mass_properties(), self.orientation_states);
+        component body: Body = body_of(self.mass_properties(), root_start!(self));
         equation {
             for (holds, message) in self.checks() {
                 assert(holds, message);
