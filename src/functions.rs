@@ -102,7 +102,8 @@ pub fn pow(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
     a.into().pow(b)
 }
 
-/// `a < b` (1 when true, 0 otherwise).
+/// `a < b` (1 when true, 0 otherwise). A relation on variables or time generates an
+/// event where it changes (see [`no_event`]); `le`, `gt` and `ge` too.
 pub fn lt(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
     a.into().lt(b)
 }
@@ -120,6 +121,22 @@ pub fn gt(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
 /// `a >= b`.
 pub fn ge(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
     a.into().ge(b)
+}
+
+/// Modelica's `noEvent(e)`: `e` itself, with its relations (`lt`, `ge`, ...) evaluated
+/// as they are during integration. Without it, a relation on variables or time
+/// generates an event where it changes (the integrator stops there and restarts), and
+/// keeps its value between events. Use it where an expression is continuous across
+/// the switch or only guards a singularity, as MSL does.
+pub fn no_event(e: impl Into<Expr>) -> Expr {
+    e.into().no_event()
+}
+
+/// Modelica's `smooth(order, e)`: `e` is `order` times continuously differentiable
+/// (`order` >= 0), so its relations need no events; here the same as [`no_event`].
+pub fn smooth(order: u32, e: impl Into<Expr>) -> Expr {
+    let _ = order;
+    e.into().no_event()
 }
 
 /// `if cond then a else b` (`cond` nonzero is true).

@@ -336,7 +336,8 @@ fn dc_motor_example() {
     // sensor.flange.tau} = 0 (2); signals: reference/u_s, sensor.w/u_m and
     // {controller.y, source.v_ref, source.v} (4); the PI's xd = 0, d_part = 0 (2): 42;
     // then the ground current (the armature current in and out of the grounded set is
-    // one set): 43.
+    // one set): 43. The reference step's relation `time < reference.start_time` adds a
+    // crossing variable and its equation (70 flat), an expression of time: 44 aliases.
     // Derivative aliases: emf w, motor w and a, load w and a = 5 (the sensor's
     // w = der(phi) meets the load's angle, which has its derivative already). Left 21.
     // Index reduction: emf.phi = motor.phi - phi0 once (1); the gear's phi_a, phi_b and
@@ -348,8 +349,8 @@ fn dc_motor_example() {
     assert_golden(
         &example::dc_motor(),
         &Golden {
-            flat: 69,
-            aliases: 43,
+            flat: 70,
+            aliases: 44,
             derivative_aliases: 5,
             differentiated: 7,
             sorted: 28,

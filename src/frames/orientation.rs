@@ -341,7 +341,7 @@ pub fn axes_rotations_angles_expr(t: Mat3, sequence: [usize; 3], guess_angle1: f
     let a1a = a.atan2(-b);
     let a1b = (-a).atan2(b);
     let g = c(guess_angle1);
-    let a1 = Expr::if_else((a1a - g).abs().le((a1b - g).abs()), a1a, a1b);
+    let a1 = Expr::if_else((a1a - g).abs().le((a1b - g).abs()), a1a, a1b).no_event();
     let t_1a = planar_rotation(e1_1, a1, c(0.0)).T;
     let a2 = planar_rotation_angle(e2_1a, t_1a.mul_vec(e3_1), e3_2);
     let a3 = planar_rotation_angle(e3_2, e2_1a, t.mul_vec(t_1a.transpose().mul_vec(e2_1a)));

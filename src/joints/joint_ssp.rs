@@ -104,7 +104,7 @@ component! {
             let f_b_a1 = resolve_relative(rod1.f_b_a1, &rod1.frame_a.R, &rod1.frame_b.R);
             aux = e.dot(e_rod);
             f_rod = (-prismatic.f - e.dot(frame_ib.f + frame_im.f - f_b_a1))
-                / if_else(lt(abs(aux), 1e-10), 1e-10, aux);
+                / no_event(if_else(lt(abs(aux), 1e-10), 1e-10, aux));
             rod1.constraint_residue = rod1.f_rod - f_rod;
         }
     }

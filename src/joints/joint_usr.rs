@@ -110,7 +110,7 @@ component! {
             aux = e.cross(r2).dot(e_rod);
             f_rod = (-revolute.tau
                 - e.dot(frame_ib.t + frame_im.t + r2.cross(frame_im.f) - r2.cross(f_b_a1)))
-                / if_else(lt(abs(aux), 1e-10), 1e-10, aux);
+                / no_event(if_else(lt(abs(aux), 1e-10), 1e-10, aux));
             rod1.constraint_residue = rod1.f_rod - f_rod;
         }
     }

@@ -679,6 +679,19 @@ impl Arena {
         {
             return self.f1(Func1::Abs, base);
         }
+        if f == Func1::NoEvent
+            && matches!(
+                self.node(a),
+                Node::Var(_)
+                    | Node::Param(_)
+                    | Node::Time
+                    | Node::Der(_)
+                    | Node::F1(Func1::NoEvent, _)
+            )
+        {
+            // Nothing below that could have an event.
+            return a;
+        }
         self.intern(Node::F1(f, a))
     }
 

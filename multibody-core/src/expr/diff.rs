@@ -101,6 +101,11 @@ impl Arena {
                 let s = self.add(t1, t2);
                 self.mul(e, s)
             }
+            Node::F1(Func1::NoEvent, a) => {
+                // The derivative's relations are those of `a`: no events either.
+                let da = self.diff_rec(a, rule, memo);
+                self.f1(Func1::NoEvent, da)
+            }
             Node::F1(f, a) => {
                 let da = self.diff_rec(a, rule, memo);
                 if self.as_const(da) == Some(0.0) {
@@ -183,6 +188,7 @@ impl Arena {
                 let t2 = self.powi(fa, 2);
                 self.linear_combination(1.0, &[(-1.0, t2)])
             }
+            Func1::NoEvent => self.one(),
         }
     }
 }

@@ -283,6 +283,11 @@ impl Expr {
     pub fn tanh(self) -> Expr {
         self.f1(Func1::Tanh)
     }
+    /// Modelica's `noEvent(self)`: the same value, with its relations (`<`, `>=`, ...)
+    /// evaluated as they are during integration instead of generating events.
+    pub fn no_event(self) -> Expr {
+        self.f1(Func1::NoEvent)
+    }
 
     fn f2(self, f: Func2, b: impl Into<Expr>) -> Expr {
         Self::build([self, b.into()], |a, [x, y]| a.f2(f, x, y))

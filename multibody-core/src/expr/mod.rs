@@ -78,6 +78,9 @@ pub enum Func1 {
     Cosh,
     /// hyperbolic tangent
     Tanh,
+    /// Modelica's `noEvent(x)`: `x` itself, whose relations are evaluated as they are
+    /// (no crossing functions, no events).
+    NoEvent,
 }
 
 impl Func1 {
@@ -98,6 +101,7 @@ impl Func1 {
             Func1::Sinh => "sinh",
             Func1::Cosh => "cosh",
             Func1::Tanh => "tanh",
+            Func1::NoEvent => "noEvent",
         }
     }
 
@@ -126,6 +130,7 @@ impl Func1 {
             Func1::Sinh => x.sinh(),
             Func1::Cosh => x.cosh(),
             Func1::Tanh => x.tanh(),
+            Func1::NoEvent => x,
         }
     }
 }

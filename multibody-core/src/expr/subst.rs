@@ -254,7 +254,7 @@ impl Arena {
     /// scan, larger ones by a hash set. The stack and the scan list are buffers kept per
     /// thread, so the common case allocates nothing (a walk started from inside `visit`
     /// gets buffers of its own).
-    fn walk(&self, e: Id, visit: &mut dyn FnMut(Id, &Node) -> bool) {
+    pub(crate) fn walk(&self, e: Id, visit: &mut dyn FnMut(Id, &Node) -> bool) {
         WALK_BUFFERS.with(|cell| match cell.try_borrow_mut() {
             Ok(mut buffers) => {
                 let (stack, seen) = &mut *buffers;

@@ -62,6 +62,11 @@ pub enum Origin {
         /// The equation in words.
         text: String,
     },
+    /// The crossing function of a relation that generates events.
+    Crossing {
+        /// The relation, as written in the model.
+        relation: String,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -204,6 +209,7 @@ impl FlatSystem {
             }
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
             Origin::DynamicStates { text } => format!("dynamic state selection: {text}"),
+            Origin::Crossing { relation } => format!("crossing function of {relation}"),
             Origin::Assertion { path, condition } => {
                 let at = if path.is_empty() { "model" } else { path };
                 format!("{at}: assert({condition})")

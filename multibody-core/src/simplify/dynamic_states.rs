@@ -112,7 +112,7 @@ impl DynamicStateGroup {
 }
 
 /// A name not yet taken in `flat` (`base`, or `base` with a number).
-fn free_name(flat: &FlatSystem, base: &str) -> String {
+pub(crate) fn free_name(flat: &FlatSystem, base: &str) -> String {
     let taken = |n: &str| {
         flat.variables.iter().any(|v| v.name.starts_with(n))
             || flat.parameters.iter().any(|p| p.name.starts_with(n))

@@ -26,6 +26,7 @@ pub mod causalize;
 pub mod dynamic_states;
 mod error;
 mod evaluate;
+pub mod events;
 mod pre_eliminate;
 pub(crate) mod reduce;
 mod reroot;
@@ -46,6 +47,7 @@ pub use crate::codegen::dae::ResidualRow;
 pub use causalize::{BlockKind, LinearBlockLimits};
 pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
+pub use events::EventRelation;
 pub use reduce::Slot;
 use system::{DynamicSelection, ModelData, Reduction, Sorted};
 pub use system::{PhaseTimes, SimplifiedSystem, StateCandidates, Statistics};
@@ -191,17 +193,22 @@ pub(crate) fn dynamic_variant(ssys: &SimplifiedSystem) -> Option<Result<Simplifi
 struct FlatStage {
     model: crate::model::FlatSystem,
     evaluated_parameters: Vec<bool>,
+    events: Vec<EventRelation>,
 }
 
-/// Stage 1: flattening, the balance check and the evaluation of parameters.
+/// Stage 1: flattening, the balance check, the evaluation of parameters and the
+/// relations that generate events.
 fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage, Error> {
     let mut flat = flatten(model)?;
     check_balance(&flat)?;
-    let evaluated_parameters =
+    let mut evaluated_parameters =
         evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
+    let events = events::augment(&mut flat);
+    evaluated_parameters.resize(flat.parameters.len(), false);
     Ok(FlatStage {
         model: flat,
         evaluated_parameters,
+        events,
     })
 }
 
@@ -226,6 +233,7 @@ fn simplify_flat(
     let FlatStage {
         model: mut flat,
         evaluated_parameters,
+        events,
     } = stage;
     let t1 = Instant::now();
     let name = flat.name.clone();
@@ -391,6 +399,7 @@ fn simplify_flat(
             parameter_values,
             starts,
             structural,
+            events,
         },
         reduction: Reduction {
             replaced: aliased.aliases.replaced,

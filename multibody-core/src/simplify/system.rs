@@ -175,6 +175,8 @@ pub(crate) struct ModelData {
     pub(crate) starts: Vec<Option<Id>>,
     /// Full names of the structural parameters (for messages).
     pub(crate) structural: Vec<String>,
+    /// The relations that generate events.
+    pub(crate) events: Vec<super::EventRelation>,
 }
 
 /// The index-reduced equations and the variables they are in: what alias elimination,
@@ -264,6 +266,12 @@ impl SimplifiedSystem {
     /// The model's name.
     pub fn name(&self) -> &str {
         &self.model.name
+    }
+
+    /// The relations that generate events (see [`super::events`]), in the order of
+    /// their crossing variables `events.crossing[k]`.
+    pub fn event_relations(&self) -> &[super::EventRelation] {
+        &self.model.events
     }
 
     /// The groups of candidates for states whose static choice depends on the

@@ -52,6 +52,16 @@ pub trait DaeFunctions {
         cj: f64,
         values: &mut [f64],
     ) -> Result<(), EvalError>;
+    /// Number of crossing functions: where one passes through zero, the integration
+    /// stops (an event; see [`Integrated::roots`]). None by default.
+    fn n_roots(&self) -> usize {
+        0
+    }
+    /// Evaluates the crossing functions `out = g(t, y, y')` (`n_roots()` of them).
+    fn roots(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        let _ = (t, y, yp, out);
+        Ok(())
+    }
 }
 
 /// How IDA's iteration matrix is stored, filled and factorized: what a
@@ -179,6 +189,8 @@ fn invalid(t: f64, message: impl Into<String>) -> IdaError {
 enum Callback {
     Residual,
     Jacobian,
+    /// The crossing functions.
+    Roots,
 }
 
 /// State shared with the C callbacks through IDA's user-data pointer.
@@ -372,6 +384,7 @@ fn origin_name(o: Callback) -> &'static str {
     match o {
         Callback::Residual => "residual",
         Callback::Jacobian => "Jacobian",
+        Callback::Roots => "crossing functions",
     }
 }
 
@@ -558,6 +571,50 @@ unsafe extern "C" fn residual_cb(
     }));
     // SAFETY: the borrow inside the closure has ended.
     r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Residual, p.as_ref()) })
+}
+
+unsafe extern "C" fn root_cb(
+    t: sys::sunrealtype,
+    yy: sys::N_Vector,
+    yp: sys::N_Vector,
+    gout: *mut sys::sunrealtype,
+    ud: *mut c_void,
+) -> c_int {
+    let r = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: ud points to the CallbackData owned by the guard; IDA passes two
+        // serial vectors of length n and an array of n_roots values.
+        unsafe {
+            let Some(d) = ud.cast::<CallbackData<'_>>().as_mut() else {
+                return -1;
+            };
+            let n = d.n;
+            let nr = d.f.n_roots();
+            let (y, ypv) = (vec_ref(yy, n), vec_ref(yp, n));
+            let out = std::slice::from_raw_parts_mut(gout, nr);
+            match d.f.roots(t, y, ypv, out) {
+                Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
+                Ok(()) => d.record(
+                    t,
+                    Callback::Roots,
+                    EvalError {
+                        message: "a crossing function is not finite".into(),
+                        recoverable: false,
+                    },
+                ),
+                // IDA cannot recover from a failing root function.
+                Err(e) => d.record(
+                    t,
+                    Callback::Roots,
+                    EvalError {
+                        recoverable: false,
+                        ..e
+                    },
+                ),
+            }
+        }
+    }));
+    // SAFETY: the borrow inside the closure has ended.
+    r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Roots, p.as_ref()) })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -769,66 +826,21 @@ fn stats(mem: *mut c_void) -> IdaStats {
     }
 }
 
-/// Integrate from t0; `on_output(t, y, yp)` is called for t0 (with the consistent values
-/// after calc_ic if enabled) and every output, and returns `false` to stop (the
-/// integration then fails with the flag `STOPPED`). Returns statistics.
+/// IDA created for `f` from `(t0, y0, yp0)` with `settings` (and the crossing
+/// functions of `f`, if any), stopping at `t_stop`: the guard that owns it, and the
+/// vectors of the unknowns and their derivatives.
 #[allow(clippy::type_complexity)]
-pub fn integrate(
-    f: &mut dyn DaeFunctions,
+fn open<'a>(
+    f: &'a mut dyn DaeFunctions,
     t0: f64,
     y0: &[f64],
     yp0: &[f64],
     settings: &IdaSettings,
-    output: &OutputMode,
-    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
-) -> Result<IdaStats, IdaError> {
-    integrate_monitored(f, t0, y0, yp0, settings, output, on_output, None).map(|r| r.stats)
-}
-
-/// How an integration with a step monitor ended.
-#[derive(Clone, Debug)]
-pub struct Integrated {
-    /// Statistics.
-    pub stats: IdaStats,
-    /// Where the monitor stopped it, with the unknowns and derivatives there (`None`
-    /// when it reached the final time).
-    pub stopped: Option<(f64, Vec<f64>, Vec<f64>)>,
-}
-
-/// [`integrate`], with `on_step(t, y, yp)` called after every internal step (after the
-/// outputs up to `t` are reported): `false` ends the integration there, successfully,
-/// with the point where it stopped.
-#[allow(clippy::type_complexity, clippy::too_many_arguments)]
-pub fn integrate_monitored(
-    f: &mut dyn DaeFunctions,
-    t0: f64,
-    y0: &[f64],
-    yp0: &[f64],
-    settings: &IdaSettings,
-    output: &OutputMode,
-    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
-    mut on_step: Option<&mut dyn FnMut(f64, &[f64], &[f64]) -> bool>,
-) -> Result<Integrated, IdaError> {
+    t_stop: Option<f64>,
+    t_scale: f64,
+) -> Result<(Guard<'a>, sys::N_Vector, sys::N_Vector), IdaError> {
     let n = f.len();
-    validate(n, t0, y0, yp0, settings, output)?;
-
-    if n == 0 {
-        // Nothing to integrate: report the requested times.
-        on_output(t0, &[], &[]);
-        match output {
-            OutputMode::Times(times) => times.iter().for_each(|&t| {
-                on_output(t, &[], &[]);
-            }),
-            OutputMode::EveryStep { t_end } => {
-                on_output(*t_end, &[], &[]);
-            }
-        }
-        return Ok(Integrated {
-            stats: IdaStats::default(),
-            stopped: None,
-        });
-    }
-
+    let n_roots = f.n_roots();
     // Jacobian pattern.
     let pattern = f.jacobian_pattern();
     let dim = f.jacobian_dimension();
@@ -939,13 +951,7 @@ pub fn integrate_monitored(
         g.check(flag, t0, "IDASetMaxNumSteps", settings)?;
         // A step below the resolution of time cannot advance it: stop instead of
         // shrinking forever (a solution that blows up, or a singular model).
-        let t_scale = match output {
-            OutputMode::Times(times) => times.last().copied().unwrap_or(t0),
-            OutputMode::EveryStep { t_end } => *t_end,
-        }
-        .abs()
-        .max(t0.abs())
-        .max(1e-300);
+        let t_scale = t_scale.abs().max(t0.abs()).max(1e-300);
         let flag = sys::IDASetMinStep(mem, 4.0 * f64::EPSILON * t_scale);
         g.check(flag, t0, "IDASetMinStep", settings)?;
         if !settings.id.is_empty() || settings.calc_ic {
@@ -993,15 +999,135 @@ pub fn integrate_monitored(
             g.check(flag, t0, "IDASetJacFn", settings)?;
         }
 
-        let t_last = match output {
-            OutputMode::Times(times) => times.last().copied(),
-            OutputMode::EveryStep { t_end } => Some(*t_end),
-        };
-        if let Some(te) = t_last {
+        if let Some(te) = t_stop {
             let flag = sys::IDASetStopTime(mem, te);
             g.check(flag, t0, "IDASetStopTime", settings)?;
         }
+        if n_roots > 0 {
+            let nr =
+                c_int::try_from(n_roots).map_err(|_| invalid(t0, "too many crossing functions"))?;
+            let flag = sys::IDARootInit(mem, nr, Some(root_cb));
+            g.check(flag, t0, "IDARootInit", settings)?;
+            // A crossing function that is zero at the start (a step at t0) is no event.
+            let flag = sys::IDASetNoInactiveRootWarn(mem);
+            g.check(flag, t0, "IDASetNoInactiveRootWarn", settings)?;
+        }
+        Ok((g, yy, yp))
+    }
+}
 
+/// Integrate from t0; `on_output(t, y, yp)` is called for t0 (with the consistent values
+/// after calc_ic if enabled) and every output, and returns `false` to stop (the
+/// integration then fails with the flag `STOPPED`). Returns statistics.
+#[allow(clippy::type_complexity)]
+pub fn integrate(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    output: &OutputMode,
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
+) -> Result<IdaStats, IdaError> {
+    integrate_monitored(f, t0, y0, yp0, settings, output, on_output, None).map(|r| r.stats)
+}
+
+/// Consistent values at `t0` after the model's discrete values changed (an event):
+/// IDA's `IDACalcIC` keeps the differential unknowns (those `settings.id` marks 1) and
+/// computes the algebraic ones and every derivative. `tout1` is where the integration
+/// heads next (it scales IDA's trial step).
+pub fn consistent_values(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    tout1: f64,
+) -> Result<(Vec<f64>, Vec<f64>), IdaError> {
+    let n = f.len();
+    if n == 0 {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    let settings = IdaSettings {
+        calc_ic: true,
+        ..settings.clone()
+    };
+    let (mut g, yy, yp) = open(f, t0, y0, yp0, &settings, None, tout1)?;
+    // SAFETY: every SUNDIALS object is owned by `g`; the slices are read after the
+    // last SUNDIALS call.
+    unsafe {
+        let flag = sys::IDACalcIC(g.mem, sys::IDA_YA_YDP_INIT, tout1);
+        g.check(
+            flag,
+            t0,
+            "consistent values after an event (IDACalcIC)",
+            &settings,
+        )?;
+        let flag = sys::IDAGetConsistentIC(g.mem, yy, yp);
+        g.check(flag, t0, "IDAGetConsistentIC", &settings)?;
+        Ok((vec_ref(yy, n).to_vec(), vec_ref(yp, n).to_vec()))
+    }
+}
+
+/// How an integration with a step monitor ended.
+#[derive(Clone, Debug)]
+pub struct Integrated {
+    /// Statistics.
+    pub stats: IdaStats,
+    /// Where the monitor or a crossing function stopped it, with the unknowns and
+    /// derivatives there (`None` when it reached the final time).
+    pub stopped: Option<(f64, Vec<f64>, Vec<f64>)>,
+    /// Where a crossing function stopped it: per crossing function, +1 where it
+    /// passed through zero rising, -1 falling, 0 where it did not (empty otherwise).
+    /// The point of the crossing has been reported as an output.
+    pub roots: Vec<i32>,
+}
+
+/// [`integrate`], with `on_step(t, y, yp)` called after every internal step (after the
+/// outputs up to `t` are reported): `false` ends the integration there, successfully,
+/// with the point where it stopped.
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+pub fn integrate_monitored(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    settings: &IdaSettings,
+    output: &OutputMode,
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
+    mut on_step: Option<&mut dyn FnMut(f64, &[f64], &[f64]) -> bool>,
+) -> Result<Integrated, IdaError> {
+    let n = f.len();
+    validate(n, t0, y0, yp0, settings, output)?;
+
+    if n == 0 {
+        // Nothing to integrate: report the requested times.
+        on_output(t0, &[], &[]);
+        match output {
+            OutputMode::Times(times) => times.iter().for_each(|&t| {
+                on_output(t, &[], &[]);
+            }),
+            OutputMode::EveryStep { t_end } => {
+                on_output(*t_end, &[], &[]);
+            }
+        }
+        return Ok(Integrated {
+            stats: IdaStats::default(),
+            stopped: None,
+            roots: Vec::new(),
+        });
+    }
+    let t_last = match output {
+        OutputMode::Times(times) => times.last().copied(),
+        OutputMode::EveryStep { t_end } => Some(*t_end),
+    };
+    let n_roots = f.n_roots();
+    let (mut g, yy, yp) = open(f, t0, y0, yp0, settings, t_last, t_last.unwrap_or(t0))?;
+    let mem = g.mem;
+
+    // SAFETY: every SUNDIALS object is owned by `g`, which frees them on every return
+    // path; slices over the vectors are only created between SUNDIALS calls.
+    unsafe {
         if settings.calc_ic {
             let tout1 = match output {
                 OutputMode::Times(times) => times.first().copied(),
@@ -1032,6 +1158,7 @@ pub fn integrate_monitored(
         let mut next_output = 0;
         let mut t = t0;
         let mut stopped = None;
+        let mut roots = Vec::new();
         // The first call's target sets IDA's estimate of the first step: the first
         // output time, as when integrating to each output in turn.
         let mut target = match output {
@@ -1048,7 +1175,9 @@ pub fn integrate_monitored(
                 return Err(g.error(t, flag, "", settings));
             }
             let done = flag == sys::IDA_TSTOP_RETURN || t >= t_end;
+            let root = flag == sys::IDA_ROOT_RETURN && !done;
             let reported_before = next_output;
+            let mut reported_at_t = false;
             steps_since_output += 1;
             match output {
                 OutputMode::Times(times) => {
@@ -1062,6 +1191,7 @@ pub fn integrate_monitored(
                             if !on_output(tout, vec_ref(yy, n), vec_ref(yp, n)) {
                                 return Err(stopped_err(t));
                             }
+                            reported_at_t = true;
                             continue;
                         }
                         let flag = sys::IDAGetDky(mem, tout, 0, ky);
@@ -1083,6 +1213,21 @@ pub fn integrate_monitored(
             if done {
                 break;
             }
+            if root {
+                // The left limit at the event is a point of the solution.
+                if matches!(output, OutputMode::Times(_))
+                    && !reported_at_t
+                    && !on_output(t, vec_ref(yy, n), vec_ref(yp, n))
+                {
+                    return Err(stopped_err(t));
+                }
+                let mut info: Vec<i32> = vec![0; n_roots];
+                let flag = sys::IDAGetRootInfo(mem, info.as_mut_ptr());
+                g.check(flag, t, "IDAGetRootInfo", settings)?;
+                roots = info;
+                stopped = Some((t, vec_ref(yy, n).to_vec(), vec_ref(yp, n).to_vec()));
+                break;
+            }
             if matches!(output, OutputMode::EveryStep { .. }) || next_output > reported_before {
                 steps_since_output = 0;
             } else if steps_since_output >= settings.max_steps {
@@ -1097,7 +1242,11 @@ pub fn integrate_monitored(
         }
         let st = stats(mem);
         log::debug!("IDA finished at t = {t}: {st:?}");
-        Ok(Integrated { stats: st, stopped })
+        Ok(Integrated {
+            stats: st,
+            stopped,
+            roots,
+        })
     }
 }
 

@@ -22,4 +22,4 @@ pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
 pub use options::{LinearSolver, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
-pub use solution::{Segment, Solution};
+pub use solution::{Event, Segment, Solution};

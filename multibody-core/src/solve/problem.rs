@@ -16,7 +16,7 @@ use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
 use super::options::{LinearSolver, SolverOptions};
-use super::solution::{Segment, Solution, SolutionParts};
+use super::solution::{Event, Segment, Solution, SolutionParts};
 
 /// What the initialization did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -468,9 +468,9 @@ impl<'a> DaeProblem<'a> {
                 sys,
                 t0: tspan.0,
                 params,
-                starts,
-                fixed,
-                guesses: guess_values,
+                starts: starts.clone(),
+                fixed: fixed.clone(),
+                guesses: guess_values.clone(),
             });
             match init {
                 Ok(init) => init,
@@ -489,8 +489,27 @@ impl<'a> DaeProblem<'a> {
                 Err(e) => return Err(e.into()),
             }
         } else {
-            initialize_dynamic(sys, tspan.0, params, starts, fixed, guess_values, false)?
+            let (starts, fixed, guesses) = (starts.clone(), fixed.clone(), guess_values.clone());
+            initialize_dynamic(sys, tspan.0, params, starts, fixed, guesses, false)?
         };
+        // Relations hold at the initial point what they evaluate to there.
+        let init = settle_initial_relations(sys, tspan.0, init, |params| {
+            let (starts, fixed, guesses) = (starts.clone(), fixed.clone(), guess_values.clone());
+            if sys.dynamic.groups.is_empty() {
+                initialize(InitInput {
+                    sys,
+                    t0: tspan.0,
+                    params,
+                    starts,
+                    fixed,
+                    guesses,
+                })
+                .map_err(Error::from)
+            } else {
+                initialize_dynamic(sys, tspan.0, params, starts, fixed, guesses, false)
+                    .map_err(Error::from)
+            }
+        })?;
         let given = sys.dynamic.source.is_some().then(|| {
             let own =
                 |list: &[(&str, f64)]| list.iter().map(|&(n, v)| (n.to_string(), v)).collect();
@@ -516,14 +535,7 @@ impl<'a> DaeProblem<'a> {
         init: super::init::InitResult,
         given: Option<Box<Given>>,
     ) -> DaeProblem<'a> {
-        // u0 and u'0 from the slot values.
-        let mut u0 = Vec::with_capacity(sys.sorted.unknowns.len());
-        let mut up0 = Vec::with_capacity(sys.sorted.unknowns.len());
-        for &l in &sys.sorted.unknowns {
-            let s = sys.reduction.slot_of.get(l).expect("an unknown is a slot");
-            u0.push(init.slot_values[s]);
-            up0.push(sys.reduction.var_diff[s].map_or(0.0, |d| init.slot_values[d]));
-        }
+        let (u0, up0) = unknowns_of(sys, &init.slot_values);
         DaeProblem {
             sys,
             tspan,
@@ -685,6 +697,7 @@ impl<'a> DaeProblem<'a> {
             segments: Vec::new(),
             stats: IdaStats::default(),
             points_left: options.max_points,
+            events: Vec::new(),
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -749,6 +762,14 @@ impl<'a> DaeProblem<'a> {
                 }
                 SegmentEnd::Done => break,
                 SegmentEnd::StaticDegraded { t } => return Err(Degraded::Static { t }),
+                SegmentEnd::Event { t, y, yp, roots } => {
+                    // The event's point ends this segment (the left limit) and, once
+                    // the relations have settled, starts the next (the right limit).
+                    let (y, yp) = self
+                        .settle_event(&mut params, t, (y, yp), &roots, options, &mut run)
+                        .map_err(Degraded::Error)?;
+                    (t0, u0, up0) = (t, y, yp);
+                }
                 SegmentEnd::Switch { t, y, yp, decision } => {
                     // The point where the selection changes ends this segment (it has
                     // it) and starts the next, with the new selection.
@@ -832,7 +853,81 @@ impl<'a> DaeProblem<'a> {
             segments: run.segments,
             stats: run.stats,
             init: self.report.clone(),
+            events: run.events,
         }))
+    }
+
+    /// At an event at `t` (crossing functions `roots`, left limit `(y, yp)`): the
+    /// relations that crossed take their new values, the model is re-initialized with
+    /// them (the differential unknowns kept, IDA's `IDACalcIC`), and every other
+    /// relation is evaluated there again until none changes (Modelica's event
+    /// iteration). Records the events in `run` and returns the right limit.
+    fn settle_event(
+        &self,
+        params: &mut [f64],
+        t: f64,
+        (mut y, mut yp): (Vec<f64>, Vec<f64>),
+        roots: &[i32],
+        options: &SolverOptions,
+        run: &mut Run,
+    ) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let sys = self.sys;
+        let relations = &sys.model.events;
+        let mut record = |params: &mut [f64], r: &crate::simplify::EventRelation, value: bool| {
+            let changed = (params[r.parameter] != 0.0) != value;
+            if changed {
+                params[r.parameter] = f64::from(u8::from(value));
+                run.events.push(Event {
+                    t,
+                    condition: r.text.clone(),
+                    value,
+                    rising: value == matches!(r.op, crate::expr::Cmp::Gt | crate::expr::Cmp::Ge),
+                });
+            }
+            changed
+        };
+        for (r, &dir) in relations.iter().zip(roots) {
+            if dir != 0 {
+                record(params, r, r.holds_after_crossing(dir > 0));
+            }
+        }
+        let tout1 = t + 1e-3 * (self.tspan.1 - self.tspan.0);
+        let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+        let mut changing = Vec::new();
+        for _ in 0..MAX_EVENT_ITERATIONS {
+            let specialized;
+            let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
+                specialized = sys.compiled.specialize(params);
+                &specialized
+            } else {
+                &sys.compiled
+            };
+            let (settings, extended) = ida_settings(sys, c, options);
+            let mut f = CompiledFunctions::new(c, params, extended);
+            (y, yp) =
+                ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
+                    Error::from(SolveError {
+                        model: sys.model.name.clone(),
+                        t: e.t,
+                        flag: e.flag,
+                        message: e.message,
+                    })
+                })?;
+            if !observer.load(t, &y, &yp, params) {
+                return Ok((y, yp));
+            }
+            changing.clear();
+            for (r, &dir) in relations.iter().zip(roots) {
+                // A relation that crossed here keeps the value its crossing gave it.
+                if dir == 0 && record(params, r, r.holds(observer.base[r.crossing])) {
+                    changing.push(r.text.clone());
+                }
+            }
+            if changing.is_empty() {
+                return Ok((y, yp));
+            }
+        }
+        Err(unsettled(sys, t, &changing))
     }
 
     /// Integrates one segment from `start` with `params`, appending its points to
@@ -859,32 +954,12 @@ impl<'a> DaeProblem<'a> {
             &sys.compiled
         };
         let n = u0.len();
-        let (matrix, extended) = match options.linear_solver {
-            LinearSolver::Auto if n <= 24 => (IdaMatrix::Dense, false),
-            LinearSolver::Auto | LinearSolver::Sparse => {
-                (IdaMatrix::SparseLu, c.extended().is_some())
-            }
-            LinearSolver::SparsePlain => (IdaMatrix::SparseLu, false),
-            LinearSolver::Dense => (IdaMatrix::Dense, false),
-            LinearSolver::DenseDifferenceQuotient => (IdaMatrix::DenseDifferenceQuotient, false),
-        };
-        let settings = IdaSettings {
-            rtol: options.rtol,
-            atol: options.atol,
-            atol_vector: None,
-            max_step: options.max_step,
-            initial_step: options.initial_step,
-            max_steps: options.max_steps,
-            id: sys.sorted.mass_matrix_diagonal.clone(),
-            suppress_alg: options.suppress_alg,
-            matrix,
-            calc_ic: false,
-        };
+        let (settings, extended) = ida_settings(sys, c, options);
         let output = match output_times {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
         };
-        let mut f = CompiledFunctions::new(c, params, extended);
+        let mut f = CompiledFunctions::new(c, params, extended).with_crossings(sys);
         let first = run.t.len();
         let mut exceeded = None;
         let mut decision = None;
@@ -999,8 +1074,11 @@ impl<'a> DaeProblem<'a> {
             }
         };
         run.stats.add(&integrated.stats);
-        // Where the selection changes, the segment ends with a point of its own.
-        if let Some((t, y, yp)) = &integrated.stopped {
+        // Where the selection changes, the segment ends with a point of its own (at
+        // an event, the integrator reported it).
+        if let Some((t, y, yp)) = &integrated.stopped
+            && integrated.roots.is_empty()
+        {
             run.push(t.to_owned(), y, yp, sys)?;
         }
         if options.project_outputs {
@@ -1030,6 +1108,12 @@ impl<'a> DaeProblem<'a> {
             });
         }
         Ok(match integrated.stopped {
+            Some((t, y, yp)) if !integrated.roots.is_empty() => SegmentEnd::Event {
+                t,
+                y,
+                yp,
+                roots: integrated.roots,
+            },
             Some((t, y, yp)) => SegmentEnd::Switch {
                 t,
                 y,
@@ -1089,6 +1173,14 @@ enum SegmentEnd {
         yp: Vec<f64>,
         decision: dynamic::Decision,
     },
+    /// A relation's crossing function passed through zero here (`roots` as
+    /// [`ida::Integrated::roots`]).
+    Event {
+        t: f64,
+        y: Vec<f64>,
+        yp: Vec<f64>,
+        roots: Vec<i32>,
+    },
     /// The integrator failed where the selection is good (a singular configuration of
     /// the constraints themselves); `last` is its last step.
     Failed {
@@ -1118,6 +1210,7 @@ struct Run {
     segments: Vec<Segment>,
     stats: IdaStats,
     points_left: usize,
+    events: Vec<Event>,
 }
 
 impl Run {
@@ -1153,9 +1246,120 @@ impl Run {
     }
 }
 
+/// The unknowns and their derivatives from the values of the slots.
+fn unknowns_of(sys: &SimplifiedSystem, slot_values: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mut u = Vec::with_capacity(sys.sorted.unknowns.len());
+    let mut up = Vec::with_capacity(sys.sorted.unknowns.len());
+    for &l in &sys.sorted.unknowns {
+        let s = sys.reduction.slot_of.get(l).expect("an unknown is a slot");
+        u.push(slot_values[s]);
+        up.push(sys.reduction.var_diff[s].map_or(0.0, |d| slot_values[d]));
+    }
+    (u, up)
+}
+
+/// Rounds of the event iteration before it is given up.
+const MAX_EVENT_ITERATIONS: usize = 20;
+
+/// The error of an event iteration that does not settle: `changing` are the relations
+/// that changed in its last round.
+fn unsettled(sys: &SimplifiedSystem, t: f64, changing: &[String]) -> Error {
+    SolveError {
+        model: sys.model.name.clone(),
+        t,
+        flag: "EVENT_ITERATION".into(),
+        message: format!(
+            "the relations do not settle after {MAX_EVENT_ITERATIONS} rounds of the event \
+             iteration; still changing: {}",
+            changing.join(", ")
+        ),
+    }
+    .into()
+}
+
+/// `init` again with its relations' values at its point, until they agree with the
+/// values it used (Modelica evaluates the relations at the initial time as they are).
+/// `reinit` initializes with other parameter values.
+fn settle_initial_relations(
+    sys: &SimplifiedSystem,
+    t0: f64,
+    mut init: super::init::InitResult,
+    mut reinit: impl FnMut(Vec<f64>) -> Result<super::init::InitResult, Error>,
+) -> Result<super::init::InitResult, Error> {
+    let relations = &sys.model.events;
+    if relations.is_empty() {
+        return Ok(init);
+    }
+    let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+    let mut changing = Vec::new();
+    for _ in 0..MAX_EVENT_ITERATIONS {
+        let (u, up) = unknowns_of(sys, &init.slot_values);
+        if !observer.load(t0, &u, &up, &init.params) {
+            // Not evaluable there: the integration reports where.
+            return Ok(init);
+        }
+        let mut params = init.params.clone();
+        changing.clear();
+        for r in relations {
+            let value = r.holds(observer.base[r.crossing]);
+            if (params[r.parameter] != 0.0) != value {
+                params[r.parameter] = f64::from(u8::from(value));
+                changing.push(r.text.clone());
+            }
+        }
+        if changing.is_empty() {
+            return Ok(init);
+        }
+        init = reinit(params)?;
+    }
+    Err(unsettled(sys, t0, &changing))
+}
+
+/// IDA's settings for `sys` with the compiled functions `c` (the system's own, or
+/// specialized to parameter values), and whether the extended Jacobian is used.
+fn ida_settings(
+    sys: &SimplifiedSystem,
+    c: &CompiledDae,
+    options: &SolverOptions,
+) -> (IdaSettings, bool) {
+    let n = sys.sorted.mass_matrix_diagonal.len();
+    let (matrix, extended) = match options.linear_solver {
+        LinearSolver::Auto if n <= 24 => (IdaMatrix::Dense, false),
+        LinearSolver::Auto | LinearSolver::Sparse => (IdaMatrix::SparseLu, c.extended().is_some()),
+        LinearSolver::SparsePlain => (IdaMatrix::SparseLu, false),
+        LinearSolver::Dense => (IdaMatrix::Dense, false),
+        LinearSolver::DenseDifferenceQuotient => (IdaMatrix::DenseDifferenceQuotient, false),
+    };
+    let settings = IdaSettings {
+        rtol: options.rtol,
+        atol: options.atol,
+        atol_vector: None,
+        max_step: options.max_step,
+        initial_step: options.initial_step,
+        max_steps: options.max_steps,
+        id: sys.sorted.mass_matrix_diagonal.clone(),
+        suppress_alg: options.suppress_alg,
+        matrix,
+        calc_ic: false,
+    };
+    (settings, extended)
+}
+
+/// The crossing functions of a system's event relations, read from its observed
+/// function.
+struct Crossings<'c> {
+    observed: &'c crate::codegen::Tape,
+    ws: Workspace,
+    out: Vec<f64>,
+    /// The observed output of each crossing variable.
+    outputs: Vec<usize>,
+}
+
 /// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
 pub(crate) struct CompiledFunctions<'c> {
     c: &'c CompiledDae,
+    /// The crossing functions of the events, when the integration looks for them.
+    crossings: Option<Crossings<'c>>,
     inputs: Vec<f64>,
     ws: Workspace,
     /// Workspace of the plain Jacobian, made on first use.
@@ -1177,6 +1381,7 @@ impl<'c> CompiledFunctions<'c> {
         }
         CompiledFunctions {
             c,
+            crossings: None,
             inputs,
             ws: c.residual.workspace(),
             jws: None,
@@ -1187,6 +1392,23 @@ impl<'c> CompiledFunctions<'c> {
                 .map(|e| (e, e.workspace(&c.residual))),
             layout,
         }
+    }
+
+    /// The same functions with the crossing functions of `sys`'s event relations (from
+    /// `c`'s observed function; the crossing variable `k` is its output `k`'s flat
+    /// variable).
+    pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem) -> Self {
+        let events = &sys.model.events;
+        if !events.is_empty() {
+            let observed = &*self.c.observed;
+            self.crossings = Some(Crossings {
+                observed,
+                ws: observed.workspace(),
+                out: vec![0.0; observed.n_outputs()],
+                outputs: events.iter().map(|e| e.crossing).collect(),
+            });
+        }
+        self
     }
 
     fn load(&mut self, t: f64, y: &[f64], yp: &[f64]) {
@@ -1220,6 +1442,21 @@ impl DaeFunctions for CompiledFunctions<'_> {
                 message: format!("residual {i} is not finite at t = {t}"),
                 recoverable: true,
             });
+        }
+        Ok(())
+    }
+
+    fn n_roots(&self) -> usize {
+        self.crossings.as_ref().map_or(0, |c| c.outputs.len())
+    }
+
+    fn roots(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.load(t, y, yp);
+        if let Some(c) = &mut self.crossings {
+            c.observed.eval(&self.inputs, &mut c.ws, &mut c.out)?;
+            for (g, &k) in out.iter_mut().zip(&c.outputs) {
+                *g = c.out[k];
+            }
         }
         Ok(())
     }

@@ -41,6 +41,23 @@ pub struct Solution {
     segments: Vec<Segment>,
     stats: IdaStats,
     init: InitReport,
+    events: Vec<Event>,
+}
+
+/// An event of a solution: a relation of the model that changed its value. The
+/// solution holds the left and the right limit at its time (two points, the first
+/// ending one segment and the second starting the next).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    /// When \[s\].
+    pub t: f64,
+    /// The relation, as written in the model (`ball.h < 0`).
+    pub condition: String,
+    /// Its value from the event on.
+    pub value: bool,
+    /// Whether its crossing function (`lhs - rhs`) rose through zero (else it fell, or
+    /// the relation changed during the event iteration, without a crossing of its own).
+    pub rising: bool,
 }
 
 /// A stretch of a solution's points computed with the same parameter values.
@@ -85,6 +102,8 @@ pub(crate) struct SolutionParts {
     pub stats: IdaStats,
     /// What the initialization did.
     pub init: InitReport,
+    /// The events, in time order.
+    pub events: Vec<Event>,
 }
 
 impl Solution {
@@ -106,11 +125,17 @@ impl Solution {
             segments: p.segments,
             stats: p.stats,
             init: p.init,
+            events: p.events,
         }
     }
 
+    /// The events of the run (relations that changed their value), in time order.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
     /// The stretches of points computed with the same parameter values: one, unless
-    /// dynamic state selection changed its selection during the run.
+    /// events or dynamic state selection changed them during the run.
     pub fn segments(&self) -> &[Segment] {
         &self.segments
     }

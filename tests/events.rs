@@ -1,0 +1,213 @@
+//! State and time events from relations (Modelica's semantics): located by the
+//! integrator's root finding, each recorded with its left and right limits, against
+//! closed-form solutions.
+
+#![allow(missing_docs)]
+
+use std::f64::consts::PI;
+
+use multibody::blocks::Step;
+use multibody::prelude::*;
+use multibody::rotational::{Inertia, Torque};
+
+component! {
+    /// A mass on a spring that is stiffer when stretched (`x > 0`) than when
+    /// compressed: `m der(v) = -k x`, `k = k_pos` where `x > 0` and `k_neg` elsewhere.
+    pub struct BilinearOscillator {
+        /// Mass \[kg\].
+        parameter m: f64 = 1.0;
+        /// Stiffness where `x > 0` \[N/m\].
+        parameter k_pos: f64 = 4.0;
+        /// Stiffness where `x <= 0` \[N/m\].
+        parameter k_neg: f64 = 1.0;
+        /// Whether the switch is integrated through without events (`noEvent`).
+        structural without_events: bool = false;
+        /// Position \[m\].
+        variable x(start = 1.0, fixed = true): Real;
+        /// Velocity \[m/s\].
+        variable v(start = 0.0, fixed = true): Real;
+        equation {
+            der(x) = v;
+            let stretched = if without_events { no_event(gt(x, 0.0)) } else { gt(x, 0.0) };
+            m * der(v) = -if_else(stretched, k_pos, k_neg) * x;
+        }
+    }
+}
+
+/// Closed form of the bilinear oscillator from x = a, v = 0: a quarter period at
+/// w1 = sqrt(k_pos / m) to the first zero, then alternately half periods at
+/// w2 = sqrt(k_neg / m) (x < 0, amplitude a w1 / w2) and w1 (x > 0).
+fn bilinear(t: f64, a: f64, w1: f64, w2: f64) -> f64 {
+    let t1 = PI / (2.0 * w1);
+    if t <= t1 {
+        return a * (w1 * t).cos();
+    }
+    let cycle = PI / w2 + PI / w1;
+    let s = (t - t1) % cycle;
+    if s <= PI / w2 {
+        -a * w1 / w2 * (w2 * s).sin()
+    } else {
+        a * (w1 * (s - PI / w2)).sin()
+    }
+}
+
+fn options(t_end: f64, n: usize) -> SolverOptions {
+    SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
+        ..SolverOptions::default()
+    }
+}
+
+#[test]
+fn bilinear_oscillator_switches_its_stiffness_at_the_closed_form_times() {
+    let (a, w1, w2) = (1.0, 2.0, 1.0);
+    let mut model = System::new("bilinear");
+    model.add("osc", &BilinearOscillator::default());
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.event_relations().len(), 1);
+    assert_eq!(ssys.event_relations()[0].text, "osc.x > 0");
+    let t_end = 10.0;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 200))
+        .unwrap();
+    // Zeros of x: pi/4, then alternately pi/w2 and pi/w1 later.
+    let mut expected = vec![PI / (2.0 * w1)];
+    while expected.len() < 4 {
+        let last = *expected.last().unwrap();
+        let half = if expected.len() % 2 == 1 {
+            PI / w2
+        } else {
+            PI / w1
+        };
+        expected.push(last + half);
+    }
+    let events = sol.events();
+    assert_eq!(events.len(), expected.len(), "{events:?}");
+    for (k, (e, &t)) in events.iter().zip(&expected).enumerate() {
+        assert!((e.t - t).abs() < 1e-8, "event {k} at {}, expected {t}", e.t);
+        assert_eq!(e.condition, "osc.x > 0");
+        // Falling through zero first (x > 0 becomes false), then rising.
+        assert_eq!(e.value, k % 2 == 1, "{e:?}");
+        assert_eq!(e.rising, k % 2 == 1, "{e:?}");
+    }
+    // The trajectory, the left and right limits included.
+    let x = sol.get("osc.x").unwrap();
+    for (k, &t) in sol.t().iter().enumerate() {
+        let want = bilinear(t, a, w1, w2);
+        assert!(
+            (x[k] - want).abs() < 1e-7,
+            "x({t}) = {}, exact {want}",
+            x[k]
+        );
+    }
+    // Each event time holds two points: the left limit (ending a segment) and the
+    // right one (starting the next); the acceleration jumps between them (by -k x,
+    // zero here as x = 0, so it is the velocity's derivative that keeps its value).
+    for e in events {
+        let at: Vec<usize> = (0..sol.t().len()).filter(|&k| sol.t()[k] == e.t).collect();
+        assert_eq!(at.len(), 2, "points at the event {e:?}");
+    }
+    assert_eq!(sol.segments().len(), events.len() + 1);
+}
+
+#[test]
+fn without_events_the_switch_is_integrated_through_less_accurately() {
+    let (a, w1, w2) = (1.0, 2.0, 1.0);
+    let t_end = 10.0;
+    let run = |without_events: bool| {
+        let mut model = System::new("bilinear");
+        model.add(
+            "osc",
+            &BilinearOscillator {
+                without_events,
+                ..Default::default()
+            },
+        );
+        let ssys = structural_simplify(&model).unwrap();
+        let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+            .unwrap()
+            .solve(&options(t_end, 200))
+            .unwrap();
+        let x = sol.get("osc.x").unwrap();
+        let error = sol
+            .t()
+            .iter()
+            .zip(&x)
+            .map(|(&t, &x)| (x - bilinear(t, a, w1, w2)).abs())
+            .fold(0.0, f64::max);
+        let failures = sol.statistics().error_test_failures;
+        (
+            ssys.event_relations().len(),
+            sol.events().len(),
+            error,
+            failures,
+        )
+    };
+    let (relations, events, with, failures_with) = run(false);
+    assert_eq!((relations, events), (1, 4));
+    let (relations, events, without, failures_without) = run(true);
+    assert_eq!((relations, events), (0, 0));
+    // Both are solutions; stepping across the kinks costs accuracy and failed steps.
+    assert!(with < 1e-7 && without < 1e-4, "{with:e} {without:e}");
+    assert!(with < without, "with events {with:e}, without {without:e}");
+    assert!(
+        failures_with < failures_without,
+        "error test failures with events {failures_with}, without {failures_without}"
+    );
+}
+
+#[test]
+fn a_step_source_switches_at_its_start_time() {
+    // A torque step of height h at t_s on an inertia J at rest: w = h (t - t_s) / J
+    // after it, phi = h (t - t_s)^2 / (2 J).
+    let (h, t_s, j) = (2.0, 0.5, 4.0);
+    let model = system! {
+        name: "step_torque";
+        step = Step { height: h, start_time: t_s };
+        torque = Torque::default();
+        inertia = Inertia { J: j };
+        connect(step.y, torque.tau);
+        connect(torque.flange, inertia.flange_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(
+        &ssys,
+        &[("inertia.phi", 0.0), ("inertia.w", 0.0)],
+        (0.0, 2.0),
+    )
+    .unwrap()
+    .solve(&options(2.0, 40))
+    .unwrap();
+    let events = sol.events();
+    assert_eq!(events.len(), 1, "{events:?}");
+    assert!((events[0].t - t_s).abs() < 1e-12, "{events:?}");
+    assert_eq!(events[0].condition, "time < step.start_time");
+    assert!(!events[0].value);
+    let (w, a) = (sol.get("inertia.w").unwrap(), sol.get("inertia.a").unwrap());
+    let phi = sol.get("inertia.phi").unwrap();
+    let at: Vec<usize> = (0..sol.t().len())
+        .filter(|&k| sol.t()[k] == events[0].t)
+        .collect();
+    assert_eq!(at.len(), 2);
+    // Left limit: at rest, no acceleration; right limit: h / J.
+    assert!(a[at[0]].abs() < 1e-12 && (a[at[1]] - h / j).abs() < 1e-12);
+    for (k, &t) in sol.t().iter().enumerate() {
+        let s = (t - t_s).max(0.0);
+        assert!((w[k] - h * s / j).abs() < 1e-9, "w({t}) = {}", w[k]);
+        assert!(
+            (phi[k] - h * s * s / (2.0 * j)).abs() < 1e-9,
+            "phi({t}) = {}",
+            phi[k]
+        );
+    }
+    // The integrator never steps across the step: no error test fails.
+    assert_eq!(
+        sol.statistics().error_test_failures,
+        0,
+        "{:?}",
+        sol.statistics()
+    );
+}
