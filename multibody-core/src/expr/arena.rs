@@ -297,6 +297,11 @@ impl Arena {
         self.base_nodes + self.nodes.len()
     }
 
+    /// Whether any node of the arena is a comparison (one scan of the nodes).
+    pub(crate) fn has_comparison(&self) -> bool {
+        (0..self.len()).any(|i| matches!(self.node(Id(i as u32)), Node::Cmp(..)))
+    }
+
     /// Whether the arena holds no node (never true: 0 and 1 always exist).
     pub fn is_empty(&self) -> bool {
         self.len() == 0

@@ -57,6 +57,9 @@ fn generates_events(op: Cmp) -> bool {
 /// The relations of `flat`'s equations that generate events, in the order first met.
 fn find_relations(flat: &FlatSystem) -> Vec<Id> {
     let arena = &flat.arena;
+    if !arena.has_comparison() {
+        return Vec::new();
+    }
     let mut seen = HashSet::default();
     let mut found = Vec::new();
     let roots = flat
