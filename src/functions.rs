@@ -132,6 +132,12 @@ pub fn no_event(e: impl Into<Expr>) -> Expr {
     e.into().no_event()
 }
 
+/// Modelica's `pre(x)`: inside a `when` clause, the value of `x` just before the event
+/// (`reinit(v, -e * pre(v))`); elsewhere `x` itself.
+pub fn pre(x: impl Into<Expr>) -> Expr {
+    x.into().pre()
+}
+
 /// Modelica's `smooth(order, e)`: `e` is `order` times continuously differentiable
 /// (`order` >= 0), so its relations need no events; here the same as [`no_event`].
 pub fn smooth(order: u32, e: impl Into<Expr>) -> Expr {

@@ -6,6 +6,7 @@
 
 use std::f64::consts::PI;
 
+use multibody::Error;
 use multibody::blocks::Step;
 use multibody::prelude::*;
 use multibody::rotational::{Inertia, Torque};
@@ -210,4 +211,88 @@ fn a_step_source_switches_at_its_start_time() {
         "{:?}",
         sol.statistics()
     );
+}
+
+component! {
+    /// A ball bouncing on the ground `h = 0` with a coefficient of restitution `e`.
+    pub struct BouncingBall {
+        /// Gravity \[m/s2\].
+        parameter g: f64 = 9.81;
+        /// Coefficient of restitution.
+        parameter e: f64 = 0.8;
+        /// Height \[m\].
+        variable h(start = 1.0, fixed = true): Real;
+        /// Velocity \[m/s\].
+        variable v(start = 0.0, fixed = true): Real;
+        /// Number of bounces.
+        variable bounces(start = 0.0): Real;
+        equation {
+            der(h) = v;
+            der(v) = -g;
+            when lt(h, 0.0) {
+                reinit(v, -e * pre(v));
+                bounces = pre(bounces) + 1.0;
+            }
+        }
+    }
+}
+
+#[test]
+fn bouncing_ball_impacts_at_the_closed_form_times() {
+    // From h0 at rest: the first impact at t1 = sqrt(2 h0 / g) with speed g t1; each
+    // bounce leaves with e times the speed it arrived with, and flies 2 e^k g t1 / g.
+    let (g, e, h0): (f64, f64, f64) = (9.81, 0.8, 1.0);
+    let mut model = System::new("bouncing");
+    model.add("ball", &BouncingBall::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let t1 = (2.0 * h0 / g).sqrt();
+    let mut impacts = vec![t1];
+    for k in 1..10 {
+        let last = impacts[k - 1];
+        impacts.push(last + 2.0 * e.powi(k as i32) * t1);
+    }
+    let t_end = impacts[9] + 0.05;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 100))
+        .unwrap();
+    let hits: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|ev| ev.value)
+        .map(|ev| ev.t)
+        .collect();
+    assert_eq!(hits.len(), 10, "{:?}", sol.events());
+    for (k, (&got, &want)) in hits.iter().zip(&impacts).enumerate() {
+        assert!(
+            (got - want).abs() < 1e-6,
+            "impact {k} at {got}, exact {want}"
+        );
+    }
+    // The discrete counter changed only at the impacts; the speed after the last one.
+    assert_eq!(sol.final_value("ball.bounces").unwrap(), 10.0);
+    let v_end = sol.final_value("ball.v").unwrap();
+    let exact = e.powi(10) * g * t1 - g * (t_end - impacts[9]);
+    assert!((v_end - exact).abs() < 1e-6, "v = {v_end}, exact {exact}");
+}
+
+#[test]
+fn accumulating_bounces_end_with_an_error_at_the_accumulation_point() {
+    // The flights shrink by e each bounce: they accumulate at
+    // t1 (1 + 2 e / (1 - e)) = 9 t1 for e = 0.8, where no integration can pass.
+    let (g, h0): (f64, f64) = (9.81, 1.0);
+    let t_inf = 9.0 * (2.0 * h0 / g).sqrt();
+    let mut model = System::new("bouncing");
+    model.add("ball", &BouncingBall::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let err = DaeProblem::new(&ssys, &[], (0.0, 5.0))
+        .unwrap()
+        .solve(&options(5.0, 100))
+        .unwrap_err();
+    let Error::Solve(e) = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(e.flag, "EVENT_ACCUMULATION", "{err}");
+    assert!((e.t - t_inf).abs() < 1e-6, "{err}");
+    assert!(err.to_string().contains("`ball.h < 0`"), "{err}");
 }

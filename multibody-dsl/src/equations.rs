@@ -34,6 +34,8 @@ struct Pending {
 pub struct Translator {
     branches: Vec<Pending>,
     potential_roots: Vec<Pending>,
+    /// Inside the body of a `when` clause.
+    in_when: bool,
 }
 
 fn key(e: &Expr) -> String {
@@ -161,6 +163,31 @@ impl Translator {
         }
     }
 
+    /// `when CONDITION { ... }` (parsed as `if __when(CONDITION) { ... }`): its
+    /// equations and `reinit`s become a clause of the builder's `when`.
+    fn when_clause(
+        &mut self,
+        i: &syn::ExprIf,
+        c: &syn::ExprCall,
+        initial: bool,
+    ) -> syn::Result<TokenStream> {
+        if initial {
+            return Err(syn::Error::new(
+                c.span(),
+                "a when clause belongs in `equation`, not `initial_equation`",
+            ));
+        }
+        if self.in_when {
+            return Err(syn::Error::new(c.span(), "when clauses do not nest"));
+        }
+        let condition = &c.args[0];
+        self.in_when = true;
+        let body = self.block(&i.then_branch, false);
+        self.in_when = false;
+        let body = body?;
+        Ok(quote_spanned!(c.span()=> __s.when(#condition, |__s| #body);))
+    }
+
     /// `if rooted(x) { A } else { B }` / `if is_root(x) { A } else { B }`.
     fn graph_if(&mut self, i: &syn::ExprIf, which: &str, node: &Expr) -> syn::Result<TokenStream> {
         let k = key(node);
@@ -251,6 +278,22 @@ impl Translator {
                 let b = quote_spanned!(b.span()=> &#b);
                 Ok(quote!(__s.connect_handles(#a, #b);))
             }
+            Expr::Call(c) if call_name(e).is_some_and(|(n, _)| n == "reinit") => {
+                if c.args.len() != 2 {
+                    return Err(syn::Error::new(
+                        c.span(),
+                        "reinit takes a state and its new value, `reinit(v, -e * pre(v))`",
+                    ));
+                }
+                if !self.in_when || initial {
+                    return Err(syn::Error::new(
+                        c.span(),
+                        "reinit belongs inside a when clause: `when h.lt(0.0) { reinit(v, ..); }`",
+                    ));
+                }
+                let (state, value) = (&c.args[0], &c.args[1]);
+                Ok(quote_spanned!(c.span()=> __s.reinit(#state, #value);))
+            }
             Expr::Call(c) if call_name(e).is_some_and(|(n, _)| n == "assert") => {
                 if c.args.len() != 2 {
                     return Err(syn::Error::new(
@@ -270,6 +313,11 @@ impl Translator {
                 self.graph_call(&name, c, initial)
             }
             Expr::If(i) => {
+                if let Some((name, c)) = call_name(&i.cond)
+                    && name == "__when"
+                {
+                    return self.when_clause(i, c, initial);
+                }
                 if let Some((name, c)) = call_name(&i.cond)
                     && (name == "rooted" || name == "is_root")
                 {

@@ -8,6 +8,31 @@ use syn::{
 
 use crate::ast::*;
 
+/// The statements of an equation section: Rust statements, and Modelica's
+/// `when CONDITION { ... }`, kept as `if __when(CONDITION) { ... }` for the translator.
+fn equation_statements(input: ParseStream<'_>) -> syn::Result<Vec<syn::Stmt>> {
+    let mut out = Vec::new();
+    while !input.is_empty() {
+        if input.peek(Ident) && !input.peek2(Token![=]) && !input.peek2(Token![.]) {
+            let fork = input.fork();
+            let word: Ident = fork.parse()?;
+            if word == "when" {
+                let keyword: Ident = input.parse()?;
+                let condition = Expr::parse_without_eager_brace(input)?;
+                let body: Block = input.parse()?;
+                out.push(syn::parse_quote_spanned!(keyword.span()=> if __when(#condition) #body));
+                continue;
+            }
+        }
+        if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+            continue;
+        }
+        out.push(input.parse::<syn::Stmt>()?);
+    }
+    Ok(out)
+}
+
 fn modifiers(input: ParseStream<'_>) -> syn::Result<Vec<Modifier>> {
     if !input.peek(syn::token::Paren) {
         return Ok(Vec::new());
@@ -165,7 +190,7 @@ impl Parse for Item {
             "equation" | "initial_equation" => {
                 let content;
                 braced!(content in input);
-                let body = content.call(Block::parse_within)?;
+                let body = content.call(equation_statements)?;
                 Item::Equations {
                     initial: kw == "initial_equation",
                     body,

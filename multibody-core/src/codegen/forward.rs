@@ -24,6 +24,7 @@ fn d_f1(f: Func1, a: f64, v: f64) -> f64 {
         Func1::Cosh => a.sinh(),
         Func1::Tanh => 1.0 - v * v,
         Func1::NoEvent => 1.0,
+        Func1::Pre => 0.0,
     }
 }
 

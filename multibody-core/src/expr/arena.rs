@@ -302,6 +302,11 @@ impl Arena {
         (0..self.len()).any(|i| matches!(self.node(Id(i as u32)), Node::Cmp(..)))
     }
 
+    /// Whether any node of the arena is `pre(x)` (one scan of the nodes).
+    pub(crate) fn has_pre(&self) -> bool {
+        (0..self.len()).any(|i| matches!(self.node(Id(i as u32)), Node::F1(super::Func1::Pre, _)))
+    }
+
     /// Whether the arena holds no node (never true: 0 and 1 always exist).
     pub fn is_empty(&self) -> bool {
         self.len() == 0

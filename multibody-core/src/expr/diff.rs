@@ -189,6 +189,8 @@ impl Arena {
                 self.linear_combination(1.0, &[(-1.0, t2)])
             }
             Func1::NoEvent => self.one(),
+            // Constant between events.
+            Func1::Pre => self.zero(),
         }
     }
 }

@@ -288,6 +288,10 @@ impl Expr {
     pub fn no_event(self) -> Expr {
         self.f1(Func1::NoEvent)
     }
+    /// Modelica's `pre(self)`: in a `when` clause, the value just before the event.
+    pub fn pre(self) -> Expr {
+        self.f1(Func1::Pre)
+    }
 
     fn f2(self, f: Func2, b: impl Into<Expr>) -> Expr {
         Self::build([self, b.into()], |a, [x, y]| a.f2(f, x, y))

@@ -81,6 +81,9 @@ pub enum Func1 {
     /// Modelica's `noEvent(x)`: `x` itself, whose relations are evaluated as they are
     /// (no crossing functions, no events).
     NoEvent,
+    /// Modelica's `pre(x)`: in a `when` clause, the value of `x` just before the
+    /// event; elsewhere `x` itself.
+    Pre,
 }
 
 impl Func1 {
@@ -102,6 +105,7 @@ impl Func1 {
             Func1::Cosh => "cosh",
             Func1::Tanh => "tanh",
             Func1::NoEvent => "noEvent",
+            Func1::Pre => "pre",
         }
     }
 
@@ -130,7 +134,7 @@ impl Func1 {
             Func1::Sinh => x.sinh(),
             Func1::Cosh => x.cosh(),
             Func1::Tanh => x.tanh(),
-            Func1::NoEvent => x,
+            Func1::NoEvent | Func1::Pre => x,
         }
     }
 }

@@ -102,6 +102,14 @@ pub enum ModelError {
         /// The condition as written.
         condition: String,
     },
+    /// A `when` clause or `reinit` that cannot be what it says.
+    #[error("{component}: {message}")]
+    InvalidWhen {
+        /// The component's path.
+        component: String,
+        /// What is wrong.
+        message: String,
+    },
     /// An expression of the model was built for another model that no longer exists.
     #[error("{place}: uses an expression of a model that was dropped")]
     DroppedExpression {

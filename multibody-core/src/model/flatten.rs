@@ -67,6 +67,11 @@ pub enum Origin {
         /// The relation, as written in the model.
         relation: String,
     },
+    /// A variable assigned in `when` clauses holds its value between events.
+    Discrete {
+        /// The variable's full name.
+        variable: String,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -143,6 +148,21 @@ pub struct FlatSystem {
     /// Full names of the numeric structural parameters (fixed when the model was
     /// built), for messages.
     pub structural: Vec<String>,
+    /// `when` clauses.
+    pub whens: Vec<FlatWhen>,
+}
+
+/// A `when` clause of a flat system (see [`WhenClause`](super::WhenClause)).
+#[derive(Clone, Debug)]
+pub struct FlatWhen {
+    /// The path of the component that declared it.
+    pub path: Arc<String>,
+    /// The condition.
+    pub condition: Id,
+    /// `(variable, value)`: the discrete variables it assigns.
+    pub assignments: Vec<(u32, Id)>,
+    /// `(state, value)` of its `reinit`s.
+    pub reinits: Vec<(u32, Id)>,
 }
 
 /// Names of a flat system's leaves.
@@ -210,6 +230,9 @@ impl FlatSystem {
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
             Origin::DynamicStates { text } => format!("dynamic state selection: {text}"),
             Origin::Crossing { relation } => format!("crossing function of {relation}"),
+            Origin::Discrete { variable } => {
+                format!("{variable} holds the value its when clause gave it")
+            }
             Origin::Assertion { path, condition } => {
                 let at = if path.is_empty() { "model" } else { path };
                 format!("{at}: assert({condition})")
@@ -399,6 +422,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             stores: stores.clone(),
             assertions: Vec::new(),
             structural: Vec::new(),
+            whens: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -458,6 +482,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
                 });
             }
         }
+        f.flatten_whens(s, &path);
         for a in s.assertions() {
             let origin = Origin::Assertion {
                 path: path.clone(),
@@ -618,6 +643,66 @@ impl<'s> Flattener<'_, 's> {
 
     /// `lhs - rhs` of an equation in the local arena (built there, so the global lock
     /// held by the flattener is never taken twice).
+    /// The `when` clauses of `s` into the flat system.
+    fn flatten_whens(&mut self, s: &System, path: &Arc<String>) {
+        let component = || {
+            if s.path.is_empty() {
+                "model".to_string()
+            } else {
+                s.path.clone()
+            }
+        };
+        if !s.reinits.is_empty() {
+            self.errors.push(ModelError::InvalidWhen {
+                component: component(),
+                message: "reinit(..) belongs inside a when clause".into(),
+            });
+        }
+        for w in &s.whens {
+            let origin = |equation: Equation| Origin::Component {
+                path: path.clone(),
+                equation,
+            };
+            let whole = origin(Equation {
+                lhs: w.condition,
+                rhs: w.condition,
+            });
+            let Some(condition) = self.translate(w.condition, &whole) else {
+                continue;
+            };
+            let mut pairs = |list: &[Equation], what: &str| -> Vec<(u32, Id)> {
+                let mut out = Vec::with_capacity(list.len());
+                for eq in list {
+                    let o = origin(*eq);
+                    let (Some(l), Some(r)) =
+                        (self.translate(eq.lhs, &o), self.translate(eq.rhs, &o))
+                    else {
+                        continue;
+                    };
+                    match *self.flat.arena.node(l) {
+                        Node::Var(v) => out.push((v, r)),
+                        _ => self.errors.push(ModelError::InvalidWhen {
+                            component: component(),
+                            message: format!(
+                                "in a when clause, {what} `{}` must be a variable",
+                                self.flat.show(l)
+                            ),
+                        }),
+                    }
+                }
+                out
+            };
+            let assignments = pairs(&w.equations, "the left-hand side");
+            let reinits = pairs(&w.reinits, "the first argument of reinit");
+            self.flat.whens.push(FlatWhen {
+                path: path.clone(),
+                condition,
+                assignments,
+                reinits,
+            });
+        }
+    }
+
     fn translate_equation(&mut self, eq: &Equation, origin: &Origin) -> Option<(Id, Option<u32>)> {
         let l = self.translate(eq.lhs, origin)?;
         let r = self.translate(eq.rhs, origin)?;

@@ -18,14 +18,14 @@ mod vector;
 pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{
-    FlatAssertion, FlatEquation, FlatNames, FlatSystem, GraphOrigin, Origin, flatten,
+    FlatAssertion, FlatEquation, FlatNames, FlatSystem, FlatWhen, GraphOrigin, Origin, flatten,
 };
 pub use named::{Named, names};
 pub use overdetermined::{GraphDecl, GraphNode, OverdeterminedGroup, OverdeterminedType};
 pub use shared_text::SharedText;
 pub use system::{
     Assertion, Checks, Component, Condition, Connection, Equation, StructuralValue, System,
-    join_path, show_values,
+    WhenClause, join_path, show_values,
 };
 pub use text::{EquationText, FlatOrigins};
 pub use typed::{

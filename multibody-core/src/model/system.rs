@@ -86,6 +86,10 @@ pub struct System {
     /// The component's conditions on its parameters (see [`System::assert`]); most
     /// components have none.
     pub checks: Option<Box<Checks>>,
+    /// `when` clauses (see [`System::when`]).
+    pub whens: Vec<WhenClause>,
+    /// `reinit` statements of the `when` clause being built.
+    pub(crate) reinits: Vec<Equation>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
 }
@@ -99,6 +103,20 @@ pub struct Checks {
     /// Conditions on structural parameters that failed while the component was built:
     /// each a message naming the parameter and its value.
     pub invalid: Vec<String>,
+}
+
+/// A `when` clause (Modelica's `when condition then ... end when`): at the event where
+/// `condition` becomes true, each equation `v = expr` gives the discrete variable `v`
+/// the value of `expr` (held until the next such event), and each reinit `x = expr`
+/// sets the state `x`.
+#[derive(Clone, Debug)]
+pub struct WhenClause {
+    /// Nonzero while the condition holds (relations on variables or time).
+    pub condition: Expr,
+    /// `v = expr`, `v` a variable that changes only here (a discrete variable).
+    pub equations: Vec<Equation>,
+    /// `x = expr` of `reinit(x, expr)`, `x` a state.
+    pub reinits: Vec<Equation>,
 }
 
 /// A condition on tunable parameters that must hold (see [`System::assert`]).
@@ -184,6 +202,8 @@ impl System {
             connections: Vec::new(),
             derivative_rules: Vec::new(),
             checks: None,
+            whens: Vec::new(),
+            reinits: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -317,6 +337,30 @@ impl System {
     pub fn initial_equation(&mut self, lhs: impl Into<Expr>, rhs: impl Into<Expr>) {
         let (lhs, rhs) = (self.own(lhs.into()), self.own(rhs.into()));
         self.initial_equations.push(Equation { lhs, rhs });
+    }
+
+    /// A `when` clause: the equations that `body` adds (`v = expr`, each `v` a variable
+    /// that then changes only at these events) and its [`reinit`](Self::reinit)s take
+    /// effect at the event where `condition` becomes true, with `pre(x)` the value of
+    /// `x` just before it. Between events the discrete variables keep their values.
+    pub fn when(&mut self, condition: impl Into<Expr>, body: impl FnOnce(&mut System)) {
+        let condition = self.own(condition.into());
+        let (n_equations, n_reinits) = (self.equations.len(), self.reinits.len());
+        body(self);
+        let equations = self.equations.split_off(n_equations);
+        let reinits = self.reinits.split_off(n_reinits);
+        self.whens.push(WhenClause {
+            condition,
+            equations,
+            reinits,
+        });
+    }
+
+    /// `reinit(state, value)` inside a [`when`](Self::when) clause: at its event, the
+    /// state takes `value` (evaluated there, `pre(x)` the values just before).
+    pub fn reinit(&mut self, state: impl Into<Expr>, value: impl Into<Expr>) {
+        let (lhs, rhs) = (self.own(state.into()), self.own(value.into()));
+        self.reinits.push(Equation { lhs, rhs });
     }
 
     /// Requires `condition` (Modelica's `assert(condition, message)` on parameters): a

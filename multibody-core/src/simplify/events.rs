@@ -13,10 +13,61 @@
 //! Relations of parameters alone are evaluated as they are; `==` and `!=` never
 //! generate events (as in Modelica, where they are not allowed on reals outside
 //! functions). Initial equations keep their relations: they are evaluated once.
+//!
+//! `when` clauses: the conditions' relations generate events like the equations'.
+//! Each variable a clause assigns (a *discrete variable*) becomes a parameter
+//! (`events.discrete[k]`) that the equation `v = events.discrete[k]` gives to `v`,
+//! changed only at events; `pre(x)` in a clause reads a parameter (`events.pre[k]`)
+//! that holds `x` just before the event, and is `x` itself in the equations.
 
 use crate::expr::{Cmp, Func1, Id, Node, NodeMap};
 use crate::hash::HashSet;
 use crate::model::{FlatEquation, FlatSystem, Origin, Parameter, SharedText, Variable};
+
+/// What generates events in a model, and what happens at them.
+#[derive(Clone, Debug, Default)]
+pub struct Events {
+    /// The relations that generate events.
+    pub relations: Vec<EventRelation>,
+    /// The `when` clauses.
+    pub whens: Vec<EventWhen>,
+    /// `(parameter, variable)`: the parameters that hold `pre(variable)` at an event.
+    pub pre: Vec<(usize, usize)>,
+}
+
+impl Events {
+    /// Whether the model has neither relations that generate events nor `when`
+    /// clauses.
+    pub fn is_empty(&self) -> bool {
+        self.relations.is_empty() && self.whens.is_empty()
+    }
+}
+
+/// A `when` clause, its expressions in the system's arena (relations of the condition
+/// replaced by their parameters, `pre(x)` by the parameters of [`Events::pre`]).
+#[derive(Clone, Debug)]
+pub struct EventWhen {
+    /// The condition as written (`ball.h < 0`).
+    pub text: String,
+    /// The condition.
+    pub condition: Id,
+    /// `(parameter, value)`: the discrete variables' parameters it sets.
+    pub assignments: Vec<(usize, Id)>,
+    /// Its `reinit`s.
+    pub reinits: Vec<Reinit>,
+}
+
+/// `reinit(x, value)` of a `when` clause.
+#[derive(Clone, Debug)]
+pub struct Reinit {
+    /// The state's flat variable.
+    pub variable: usize,
+    /// Its new value.
+    pub value: Id,
+    /// Its position among the unknowns of the simplified system (set once they are
+    /// ordered).
+    pub unknown: usize,
+}
 
 use super::dynamic_states::free_name;
 
@@ -66,7 +117,8 @@ fn find_relations(flat: &FlatSystem) -> Vec<Id> {
         .equations
         .iter()
         .map(|e| e.residual)
-        .chain(flat.derivative_rules.iter().map(|&(_, d)| d));
+        .chain(flat.derivative_rules.iter().map(|&(_, d)| d))
+        .chain(flat.whens.iter().map(|w| w.condition));
     for root in roots {
         arena.walk(root, &mut |x, node| match *node {
             Node::F1(Func1::NoEvent, _) => false,
@@ -89,35 +141,92 @@ fn find_relations(flat: &FlatSystem) -> Vec<Id> {
     found
 }
 
-/// Turns the relations of `flat`'s equations that generate events into relation
-/// parameters and crossing variables (see the module documentation); returns them.
-pub(crate) fn augment(flat: &mut FlatSystem) -> Vec<EventRelation> {
+/// The nodes `pre(x)` in `roots`.
+fn find_pre(flat: &FlatSystem, roots: impl Iterator<Item = Id>) -> Vec<Id> {
+    let arena = &flat.arena;
+    let mut seen = HashSet::default();
+    let mut found = Vec::new();
+    for root in roots {
+        arena.walk(root, &mut |x, node| match *node {
+            Node::F1(Func1::Pre, _) => {
+                if seen.insert(x) {
+                    found.push(x);
+                }
+                false
+            }
+            Node::Const(_) | Node::Var(_) | Node::Param(_) | Node::Time | Node::Der(_) => false,
+            _ => true,
+        });
+    }
+    found
+}
+
+/// A new parameter of `flat` with value `value` (0 when `None`); its index.
+fn add_parameter(
+    flat: &mut FlatSystem,
+    name: String,
+    description: String,
+    value: Option<Id>,
+) -> usize {
+    let k = flat.parameters.len();
+    flat.parameters.push(Parameter {
+        name: SharedText::from(name),
+        value: None,
+        fixed: true,
+        description: SharedText::from(description),
+        unit: SharedText::default(),
+        evaluate: false,
+        min: f64::NEG_INFINITY,
+        max: f64::INFINITY,
+        symbol: None,
+    });
+    let value = value.unwrap_or_else(|| flat.arena.zero());
+    flat.parameter_values.push(Some(value));
+    k
+}
+
+/// Turns the relations of `flat`'s equations and `when` conditions that generate
+/// events into relation parameters and crossing variables, and the discrete variables
+/// and `pre` values of its `when` clauses into parameters (see the module
+/// documentation); returns what the solver needs of them.
+pub(crate) fn augment(flat: &mut FlatSystem) -> Events {
+    let relations = relations(flat);
+    let whens = whens(flat, &relations);
+    Events {
+        relations: relations.relations,
+        whens: whens.0,
+        pre: whens.1,
+    }
+}
+
+/// The relations of [`augment`], with the map from each relation to its parameter.
+struct Relations {
+    relations: Vec<EventRelation>,
+    map: NodeMap,
+}
+
+fn relations(flat: &mut FlatSystem) -> Relations {
     let relations = find_relations(flat);
+    let mut map = NodeMap::default();
     if relations.is_empty() {
-        return Vec::new();
+        return Relations {
+            relations: Vec::new(),
+            map,
+        };
     }
     let base = free_name(flat, "events");
-    let mut map = NodeMap::default();
     let mut out = Vec::with_capacity(relations.len());
     for (k, &c) in relations.iter().enumerate() {
         let Node::Cmp(op, a, b) = *flat.arena.node(c) else {
             unreachable!("a relation")
         };
         let text = flat.show(c);
-        let parameter = flat.parameters.len();
-        flat.parameters.push(Parameter {
-            name: SharedText::from(format!("{base}.relation[{}]", k + 1)),
-            value: None,
-            fixed: true,
-            description: SharedText::from(format!("1 while {text} holds (changes at events)")),
-            unit: SharedText::default(),
-            evaluate: false,
-            min: f64::NEG_INFINITY,
-            max: f64::INFINITY,
-            symbol: None,
-        });
-        let zero = flat.arena.zero();
-        flat.parameter_values.push(Some(zero));
+        let parameter = add_parameter(
+            flat,
+            format!("{base}.relation[{}]", k + 1),
+            format!("1 while {text} holds (changes at events)"),
+            None,
+        );
         let crossing = flat.variables.len();
         flat.variables.push(
             Variable::new(format!("{base}.crossing[{}]", k + 1))
@@ -152,5 +261,138 @@ pub(crate) fn augment(flat: &mut FlatSystem) -> Vec<EventRelation> {
     for (_, d) in &mut flat.derivative_rules {
         *d = flat.arena.substitute_memo(*d, &map, &mut memo);
     }
-    out
+    Relations {
+        relations: out,
+        map,
+    }
+}
+
+/// The `when` clauses of [`augment`] and its `pre` parameters; `pre(x)` in the
+/// equations becomes `x`.
+fn whens(flat: &mut FlatSystem, relations: &Relations) -> (Vec<EventWhen>, Vec<(usize, usize)>) {
+    let in_equations = if flat.arena.has_pre() {
+        find_pre(
+            flat,
+            flat.equations
+                .iter()
+                .chain(&flat.initial_equations)
+                .map(|e| e.residual)
+                .chain(flat.derivative_rules.iter().map(|&(_, d)| d)),
+        )
+    } else {
+        Vec::new()
+    };
+    if !in_equations.is_empty() {
+        let mut map = NodeMap::default();
+        for &p in &in_equations {
+            let Node::F1(_, a) = *flat.arena.node(p) else {
+                unreachable!("a pre node")
+            };
+            map.insert(p, a);
+        }
+        let mut memo = NodeMap::default();
+        for e in flat.equations.iter_mut().chain(&mut flat.initial_equations) {
+            e.residual = flat.arena.substitute_memo(e.residual, &map, &mut memo);
+        }
+        for (_, d) in &mut flat.derivative_rules {
+            *d = flat.arena.substitute_memo(*d, &map, &mut memo);
+        }
+    }
+    if flat.whens.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let base = free_name(flat, "events");
+    // The discrete variables, each held by a parameter.
+    let mut discrete: Vec<(u32, usize)> = Vec::new();
+    let assigned: Vec<u32> = flat
+        .whens
+        .iter()
+        .flat_map(|w| w.assignments.iter().map(|&(v, _)| v))
+        .collect();
+    for v in assigned {
+        if discrete.iter().any(|&(d, _)| d == v) {
+            continue;
+        }
+        let name = flat.variables[v as usize].name.to_string();
+        let start = flat.starts[v as usize];
+        let p = add_parameter(
+            flat,
+            format!("{base}.discrete[{}]", discrete.len() + 1),
+            format!("{name} between events"),
+            start,
+        );
+        let (x, held) = (flat.arena.var(v), flat.arena.param(p as u32));
+        let residual = flat.arena.sub(x, held);
+        flat.equations.push(FlatEquation {
+            residual,
+            origin: Origin::Discrete { variable: name },
+            lhs_var: Some(v),
+        });
+        discrete.push((v, p));
+    }
+    // pre(x) in the clauses: a parameter that holds x before the event.
+    let clause_roots: Vec<Id> = flat
+        .whens
+        .iter()
+        .flat_map(|w| {
+            std::iter::once(w.condition)
+                .chain(w.assignments.iter().map(|&(_, e)| e))
+                .chain(w.reinits.iter().map(|&(_, e)| e))
+        })
+        .collect();
+    let mut map = relations.map.clone();
+    let mut pre = Vec::new();
+    for p in find_pre(flat, clause_roots.into_iter()) {
+        let Node::F1(_, a) = *flat.arena.node(p) else {
+            unreachable!("a pre node")
+        };
+        let image = match *flat.arena.node(a) {
+            Node::Var(v) => {
+                let name = flat.variables[v as usize].name.to_string();
+                let k = add_parameter(
+                    flat,
+                    format!("{base}.pre[{}]", pre.len() + 1),
+                    format!("{name} just before the event"),
+                    None,
+                );
+                pre.push((k, v as usize));
+                flat.arena.param(k as u32)
+            }
+            // pre of anything else is the value now.
+            _ => a,
+        };
+        map.insert(p, image);
+    }
+    let mut memo = NodeMap::default();
+    let whens = std::mem::take(&mut flat.whens);
+    let mut out = Vec::with_capacity(whens.len());
+    for w in &whens {
+        let text = flat.show(w.condition);
+        let condition = flat.arena.substitute_memo(w.condition, &map, &mut memo);
+        let assignments = w
+            .assignments
+            .iter()
+            .map(|&(v, e)| {
+                let p = discrete.iter().find(|&&(d, _)| d == v).expect("declared").1;
+                (p, flat.arena.substitute_memo(e, &map, &mut memo))
+            })
+            .collect();
+        let reinits = w
+            .reinits
+            .iter()
+            .map(|&(v, e)| Reinit {
+                variable: v as usize,
+                value: flat.arena.substitute_memo(e, &map, &mut memo),
+                unknown: usize::MAX,
+            })
+            .collect();
+        out.push(EventWhen {
+            text,
+            condition,
+            assignments,
+            reinits,
+        });
+    }
+    flat.whens = whens;
+    (out, pre)
 }

@@ -47,7 +47,7 @@ pub use crate::codegen::dae::ResidualRow;
 pub use causalize::{BlockKind, LinearBlockLimits};
 pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
-pub use events::EventRelation;
+pub use events::{EventRelation, EventWhen, Events, Reinit};
 pub use reduce::Slot;
 use system::{DynamicSelection, ModelData, Reduction, Sorted};
 pub use system::{PhaseTimes, SimplifiedSystem, StateCandidates, Statistics};
@@ -193,17 +193,17 @@ pub(crate) fn dynamic_variant(ssys: &SimplifiedSystem) -> Option<Result<Simplifi
 struct FlatStage {
     model: crate::model::FlatSystem,
     evaluated_parameters: Vec<bool>,
-    events: Vec<EventRelation>,
+    events: Events,
 }
 
 /// Stage 1: flattening, the balance check, the evaluation of parameters and the
 /// relations that generate events.
 fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage, Error> {
     let mut flat = flatten(model)?;
-    check_balance(&flat)?;
     let mut evaluated_parameters =
         evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
     let events = events::augment(&mut flat);
+    check_balance(&flat)?;
     evaluated_parameters.resize(flat.parameters.len(), false);
     Ok(FlatStage {
         model: flat,
@@ -233,7 +233,7 @@ fn simplify_flat(
     let FlatStage {
         model: mut flat,
         evaluated_parameters,
-        events,
+        mut events,
     } = stage;
     let t1 = Instant::now();
     let name = flat.name.clone();
@@ -312,6 +312,16 @@ fn simplify_flat(
     })?;
     let order = order_unknowns(&reduced, &causal.schedule);
     let simplify_s = t1.elapsed().as_secs_f64();
+
+    locate_reinits(
+        &name,
+        &mut events,
+        &mut flat.arena,
+        &variables,
+        &aliased.aliases.replaced,
+        &reduced,
+        &order,
+    )?;
 
     // Code generation.
     let t2 = Instant::now();
@@ -600,6 +610,41 @@ struct Ordering {
     derivative_inputs: Vec<(Id, usize)>,
     n_states: usize,
     n_algebraic: usize,
+}
+
+/// The unknown each `reinit` of `events` sets: a differential state of the simplified
+/// system, or an error naming the variable.
+fn locate_reinits(
+    model: &str,
+    events: &mut Events,
+    arena: &mut crate::expr::Arena,
+    variables: &[Variable],
+    replaced: &[Option<Id>],
+    reduced: &reduce::IndexReduced,
+    order: &Ordering,
+) -> Result<(), SimplifyError> {
+    for w in &mut events.whens {
+        for r in &mut w.reinits {
+            let name = &variables[r.variable].name;
+            let leaf = arena.var(r.variable as u32);
+            let unknown = replaced[r.variable]
+                .is_none()
+                .then(|| reduced.slot_of.get(leaf))
+                .flatten()
+                .and_then(|s| order.index_of.get(&reduced.slots[s].leaf).copied())
+                .filter(|&i| order.mass[i] == 1.0);
+            r.unknown = unknown.ok_or_else(|| SimplifyError::StateSelection {
+                model: model.to_string(),
+                message: format!(
+                    "reinit({name}, ..) in the when clause `{}`: `{name}` is not a state of the \
+                     simplified model (raise its state_priority, or reinit the state it \
+                     follows from)",
+                    w.text
+                ),
+            })?;
+        }
+    }
+    Ok(())
 }
 
 /// Stage 5: the order of the unknowns (position-level states, algebraic unknowns,

@@ -175,8 +175,8 @@ pub(crate) struct ModelData {
     pub(crate) starts: Vec<Option<Id>>,
     /// Full names of the structural parameters (for messages).
     pub(crate) structural: Vec<String>,
-    /// The relations that generate events.
-    pub(crate) events: Vec<super::EventRelation>,
+    /// What generates events, and what happens at them.
+    pub(crate) events: super::Events,
 }
 
 /// The index-reduced equations and the variables they are in: what alias elimination,
@@ -271,7 +271,7 @@ impl SimplifiedSystem {
     /// The relations that generate events (see [`super::events`]), in the order of
     /// their crossing variables `events.crossing[k]`.
     pub fn event_relations(&self) -> &[super::EventRelation] {
-        &self.model.events
+        &self.model.events.relations
     }
 
     /// The groups of candidates for states whose static choice depends on the

@@ -185,7 +185,10 @@ pub struct SolveError {
     /// The time reached.
     pub t: f64,
     /// IDA's return flag (`IDA_CONV_FAIL`, ...), `MAX_POINTS` (more reported points
-    /// than allowed) or `BAD_OPTION` (an option that cannot be used).
+    /// than allowed), `BAD_OPTION` (an option that cannot be used), `EVENT_ITERATION`
+    /// (the relations do not settle at an event), `EVENT_ACCUMULATION` (events
+    /// accumulate: Zeno behaviour) or `WHEN` (a `when` clause's expression cannot be
+    /// evaluated).
     pub flag: String,
     /// What went wrong, in words.
     pub message: String,

@@ -8,6 +8,7 @@
 mod builder;
 mod dynamic;
 mod error;
+mod events;
 pub mod ida;
 mod init;
 mod linsol;

@@ -16,7 +16,7 @@ use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
 use super::options::{LinearSolver, SolverOptions};
-use super::solution::{Event, Segment, Solution, SolutionParts};
+use super::solution::{Segment, Solution, SolutionParts};
 
 /// What the initialization did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -493,7 +493,7 @@ impl<'a> DaeProblem<'a> {
             initialize_dynamic(sys, tspan.0, params, starts, fixed, guesses, false)?
         };
         // Relations hold at the initial point what they evaluate to there.
-        let init = settle_initial_relations(sys, tspan.0, init, |params| {
+        let init = super::events::settle_initial_relations(sys, tspan.0, init, |params| {
             let (starts, fixed, guesses) = (starts.clone(), fixed.clone(), guess_values.clone());
             if sys.dynamic.groups.is_empty() {
                 initialize(InitInput {
@@ -697,7 +697,7 @@ impl<'a> DaeProblem<'a> {
             segments: Vec::new(),
             stats: IdaStats::default(),
             points_left: options.max_points,
-            events: Vec::new(),
+            events: super::events::History::new(sys, self.tspan),
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -765,9 +765,16 @@ impl<'a> DaeProblem<'a> {
                 SegmentEnd::Event { t, y, yp, roots } => {
                     // The event's point ends this segment (the left limit) and, once
                     // the relations have settled, starts the next (the right limit).
-                    let (y, yp) = self
-                        .settle_event(&mut params, t, (y, yp), &roots, options, &mut run)
-                        .map_err(Degraded::Error)?;
+                    let (y, yp) = super::events::settle(
+                        sys,
+                        self.tspan,
+                        &mut params,
+                        (t, y, yp),
+                        &roots,
+                        options,
+                        &mut run.events,
+                    )
+                    .map_err(Degraded::Error)?;
                     (t0, u0, up0) = (t, y, yp);
                 }
                 SegmentEnd::Switch { t, y, yp, decision } => {
@@ -853,81 +860,8 @@ impl<'a> DaeProblem<'a> {
             segments: run.segments,
             stats: run.stats,
             init: self.report.clone(),
-            events: run.events,
+            events: run.events.events,
         }))
-    }
-
-    /// At an event at `t` (crossing functions `roots`, left limit `(y, yp)`): the
-    /// relations that crossed take their new values, the model is re-initialized with
-    /// them (the differential unknowns kept, IDA's `IDACalcIC`), and every other
-    /// relation is evaluated there again until none changes (Modelica's event
-    /// iteration). Records the events in `run` and returns the right limit.
-    fn settle_event(
-        &self,
-        params: &mut [f64],
-        t: f64,
-        (mut y, mut yp): (Vec<f64>, Vec<f64>),
-        roots: &[i32],
-        options: &SolverOptions,
-        run: &mut Run,
-    ) -> Result<(Vec<f64>, Vec<f64>), Error> {
-        let sys = self.sys;
-        let relations = &sys.model.events;
-        let mut record = |params: &mut [f64], r: &crate::simplify::EventRelation, value: bool| {
-            let changed = (params[r.parameter] != 0.0) != value;
-            if changed {
-                params[r.parameter] = f64::from(u8::from(value));
-                run.events.push(Event {
-                    t,
-                    condition: r.text.clone(),
-                    value,
-                    rising: value == matches!(r.op, crate::expr::Cmp::Gt | crate::expr::Cmp::Ge),
-                });
-            }
-            changed
-        };
-        for (r, &dir) in relations.iter().zip(roots) {
-            if dir != 0 {
-                record(params, r, r.holds_after_crossing(dir > 0));
-            }
-        }
-        let tout1 = t + 1e-3 * (self.tspan.1 - self.tspan.0);
-        let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
-        let mut changing = Vec::new();
-        for _ in 0..MAX_EVENT_ITERATIONS {
-            let specialized;
-            let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
-                specialized = sys.compiled.specialize(params);
-                &specialized
-            } else {
-                &sys.compiled
-            };
-            let (settings, extended) = ida_settings(sys, c, options);
-            let mut f = CompiledFunctions::new(c, params, extended);
-            (y, yp) =
-                ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
-                    Error::from(SolveError {
-                        model: sys.model.name.clone(),
-                        t: e.t,
-                        flag: e.flag,
-                        message: e.message,
-                    })
-                })?;
-            if !observer.load(t, &y, &yp, params) {
-                return Ok((y, yp));
-            }
-            changing.clear();
-            for (r, &dir) in relations.iter().zip(roots) {
-                // A relation that crossed here keeps the value its crossing gave it.
-                if dir == 0 && record(params, r, r.holds(observer.base[r.crossing])) {
-                    changing.push(r.text.clone());
-                }
-            }
-            if changing.is_empty() {
-                return Ok((y, yp));
-            }
-        }
-        Err(unsettled(sys, t, &changing))
     }
 
     /// Integrates one segment from `start` with `params`, appending its points to
@@ -1210,7 +1144,7 @@ struct Run {
     segments: Vec<Segment>,
     stats: IdaStats,
     points_left: usize,
-    events: Vec<Event>,
+    events: super::events::History,
 }
 
 impl Run {
@@ -1247,7 +1181,7 @@ impl Run {
 }
 
 /// The unknowns and their derivatives from the values of the slots.
-fn unknowns_of(sys: &SimplifiedSystem, slot_values: &[f64]) -> (Vec<f64>, Vec<f64>) {
+pub(super) fn unknowns_of(sys: &SimplifiedSystem, slot_values: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let mut u = Vec::with_capacity(sys.sorted.unknowns.len());
     let mut up = Vec::with_capacity(sys.sorted.unknowns.len());
     for &l in &sys.sorted.unknowns {
@@ -1258,66 +1192,9 @@ fn unknowns_of(sys: &SimplifiedSystem, slot_values: &[f64]) -> (Vec<f64>, Vec<f6
     (u, up)
 }
 
-/// Rounds of the event iteration before it is given up.
-const MAX_EVENT_ITERATIONS: usize = 20;
-
-/// The error of an event iteration that does not settle: `changing` are the relations
-/// that changed in its last round.
-fn unsettled(sys: &SimplifiedSystem, t: f64, changing: &[String]) -> Error {
-    SolveError {
-        model: sys.model.name.clone(),
-        t,
-        flag: "EVENT_ITERATION".into(),
-        message: format!(
-            "the relations do not settle after {MAX_EVENT_ITERATIONS} rounds of the event \
-             iteration; still changing: {}",
-            changing.join(", ")
-        ),
-    }
-    .into()
-}
-
-/// `init` again with its relations' values at its point, until they agree with the
-/// values it used (Modelica evaluates the relations at the initial time as they are).
-/// `reinit` initializes with other parameter values.
-fn settle_initial_relations(
-    sys: &SimplifiedSystem,
-    t0: f64,
-    mut init: super::init::InitResult,
-    mut reinit: impl FnMut(Vec<f64>) -> Result<super::init::InitResult, Error>,
-) -> Result<super::init::InitResult, Error> {
-    let relations = &sys.model.events;
-    if relations.is_empty() {
-        return Ok(init);
-    }
-    let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
-    let mut changing = Vec::new();
-    for _ in 0..MAX_EVENT_ITERATIONS {
-        let (u, up) = unknowns_of(sys, &init.slot_values);
-        if !observer.load(t0, &u, &up, &init.params) {
-            // Not evaluable there: the integration reports where.
-            return Ok(init);
-        }
-        let mut params = init.params.clone();
-        changing.clear();
-        for r in relations {
-            let value = r.holds(observer.base[r.crossing]);
-            if (params[r.parameter] != 0.0) != value {
-                params[r.parameter] = f64::from(u8::from(value));
-                changing.push(r.text.clone());
-            }
-        }
-        if changing.is_empty() {
-            return Ok(init);
-        }
-        init = reinit(params)?;
-    }
-    Err(unsettled(sys, t0, &changing))
-}
-
 /// IDA's settings for `sys` with the compiled functions `c` (the system's own, or
 /// specialized to parameter values), and whether the extended Jacobian is used.
-fn ida_settings(
+pub(super) fn ida_settings(
     sys: &SimplifiedSystem,
     c: &CompiledDae,
     options: &SolverOptions,
@@ -1398,7 +1275,7 @@ impl<'c> CompiledFunctions<'c> {
     /// `c`'s observed function; the crossing variable `k` is its output `k`'s flat
     /// variable).
     pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem) -> Self {
-        let events = &sys.model.events;
+        let events = &sys.model.events.relations;
         if !events.is_empty() {
             let observed = &*self.c.observed;
             self.crossings = Some(Crossings {

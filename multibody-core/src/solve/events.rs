@@ -1,0 +1,273 @@
+//! What happens at an event (Modelica's semantics, specification chapter 8): the
+//! relations that crossed take their new values, the `when` clauses whose conditions
+//! became true set their discrete variables and `reinit` their states, the model is
+//! re-initialized around them (the differential unknowns kept: IDA's `IDACalcIC`),
+//! and every relation and condition is evaluated again, round after round, until none
+//! changes (the event iteration). The same settling applies to the relations at the
+//! initial time.
+
+use crate::Error;
+use crate::expr::{Cmp, Id, Node};
+use crate::simplify::SimplifiedSystem;
+
+use super::dynamic::Observer;
+use super::error::SolveError;
+use super::ida;
+use super::init::InitResult;
+use super::options::SolverOptions;
+use super::problem::{CompiledFunctions, ida_settings, unknowns_of};
+use super::solution::Event;
+
+/// Rounds of the event iteration before it is given up.
+const MAX_EVENT_ITERATIONS: usize = 20;
+
+/// The error of an event iteration that does not settle: `changing` are the relations
+/// that changed in its last round.
+fn unsettled(sys: &SimplifiedSystem, t: f64, changing: &[String]) -> Error {
+    SolveError {
+        model: sys.model.name.clone(),
+        t,
+        flag: "EVENT_ITERATION".into(),
+        message: format!(
+            "the relations do not settle after {MAX_EVENT_ITERATIONS} rounds of the event \
+             iteration; still changing: {}",
+            changing.join(", ")
+        ),
+    }
+    .into()
+}
+
+/// `init` again with its relations' values at its point, until they agree with the
+/// values it used (Modelica evaluates the relations at the initial time as they are).
+/// `reinit` initializes with other parameter values.
+pub(super) fn settle_initial_relations(
+    sys: &SimplifiedSystem,
+    t0: f64,
+    mut init: InitResult,
+    mut reinit: impl FnMut(Vec<f64>) -> Result<InitResult, Error>,
+) -> Result<InitResult, Error> {
+    let relations = &sys.model.events.relations;
+    if relations.is_empty() {
+        return Ok(init);
+    }
+    let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+    let mut changing = Vec::new();
+    for _ in 0..MAX_EVENT_ITERATIONS {
+        let (u, up) = unknowns_of(sys, &init.slot_values);
+        if !observer.load(t0, &u, &up, &init.params) {
+            // Not evaluable there: the integration reports where.
+            return Ok(init);
+        }
+        let mut params = init.params.clone();
+        changing.clear();
+        for r in relations {
+            let value = r.holds(observer.base[r.crossing]);
+            if (params[r.parameter] != 0.0) != value {
+                params[r.parameter] = f64::from(u8::from(value));
+                changing.push(r.text.clone());
+            }
+        }
+        if changing.is_empty() {
+            return Ok(init);
+        }
+        init = reinit(params)?;
+    }
+    Err(unsettled(sys, t0, &changing))
+}
+
+/// The value of a `when` clause's expression `e` at a point: the flat variables'
+/// values `base` (the observed function's first outputs), the parameters and time.
+fn evaluate(sys: &SimplifiedSystem, e: Id, base: &[f64], params: &[f64], t: f64) -> Option<f64> {
+    sys.model
+        .arena
+        .eval(e, &|n| match *n {
+            Node::Var(i) => base.get(i as usize).copied(),
+            Node::Param(j) => params.get(j as usize).copied(),
+            Node::Time => Some(t),
+            _ => None,
+        })
+        .filter(|v| v.is_finite())
+}
+
+/// The error of a `when` clause's expression that cannot be evaluated.
+fn not_evaluable(sys: &SimplifiedSystem, t: f64, clause: &str, what: &str) -> Error {
+    SolveError {
+        model: sys.model.name.clone(),
+        t,
+        flag: "WHEN".into(),
+        message: format!("in the when clause `{clause}`: {what} is not a finite value of variables, parameters and time"),
+    }
+    .into()
+}
+
+/// Times a relation takes the same value in quick succession before the events are
+/// said to accumulate.
+const ACCUMULATION_COUNT: usize = 10;
+/// "Quick": within this fraction of the time span.
+const ACCUMULATION_INTERVAL: f64 = 1e-9;
+
+/// The events of a run so far: all of them, and per relation and value the time it
+/// last took that value and how many times in a row it did so in quick succession.
+pub(super) struct History {
+    /// Every event, in time order.
+    pub events: Vec<Event>,
+    last: Vec<[(f64, usize); 2]>,
+    interval: f64,
+}
+
+impl History {
+    /// The history of a run over `tspan` of `sys`.
+    pub(super) fn new(sys: &SimplifiedSystem, tspan: (f64, f64)) -> Self {
+        History {
+            events: Vec::new(),
+            last: vec![[(f64::NEG_INFINITY, 0); 2]; sys.model.events.relations.len()],
+            interval: ACCUMULATION_INTERVAL * (tspan.1 - tspan.0).abs(),
+        }
+    }
+
+    /// Sets relation `k`'s parameter to `value`; records an event when that changes it.
+    /// Fails where the relation's events accumulate (Zeno behaviour: a ball bouncing
+    /// ever faster to rest), which no integration can pass.
+    fn set(
+        &mut self,
+        sys: &SimplifiedSystem,
+        params: &mut [f64],
+        k: usize,
+        value: bool,
+        t: f64,
+    ) -> Result<bool, Error> {
+        let r = &sys.model.events.relations[k];
+        let changed = (params[r.parameter] != 0.0) != value;
+        if !changed {
+            return Ok(false);
+        }
+        params[r.parameter] = f64::from(u8::from(value));
+        self.events.push(Event {
+            t,
+            condition: r.text.clone(),
+            value,
+            rising: value == matches!(r.op, Cmp::Gt | Cmp::Ge),
+        });
+        let (last, count) = &mut self.last[k][usize::from(value)];
+        *count = if t - *last < self.interval {
+            *count + 1
+        } else {
+            0
+        };
+        *last = t;
+        if *count >= ACCUMULATION_COUNT {
+            return Err(SolveError {
+                model: sys.model.name.clone(),
+                t,
+                flag: "EVENT_ACCUMULATION".into(),
+                message: format!(
+                    "events accumulate: `{}` became {value} {} times in a row within {} s of \
+                     the previous time (Zeno behaviour); the model needs a condition that \
+                     ends it (such as a ball coming to rest on the ground)",
+                    r.text,
+                    ACCUMULATION_COUNT + 1,
+                    crate::names::number(self.interval)
+                ),
+            }
+            .into());
+        }
+        Ok(true)
+    }
+}
+
+/// Settles the event at `t` whose crossing functions `roots` (as
+/// [`ida::Integrated::roots`]) ended the integration with the left limit `(y, yp)`:
+/// returns the right limit, with `params` holding the new relation values and
+/// discrete variables; the relations that changed are recorded in `events`.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn settle(
+    sys: &SimplifiedSystem,
+    tspan: (f64, f64),
+    params: &mut [f64],
+    (t, mut y, mut yp): (f64, Vec<f64>, Vec<f64>),
+    roots: &[i32],
+    options: &SolverOptions,
+    history: &mut History,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let model = &sys.model.events;
+    let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+    // Before the event: pre(x), and whether each when condition held.
+    let mut held = vec![false; model.whens.len()];
+    if !model.whens.is_empty() {
+        if !observer.load(t, &y, &yp, params) {
+            return Err(not_evaluable(
+                sys,
+                t,
+                &model.whens[0].text,
+                "the point before the event",
+            ));
+        }
+        for &(p, v) in &model.pre {
+            params[p] = observer.base[v];
+        }
+        for (w, h) in model.whens.iter().zip(&mut held) {
+            *h = evaluate(sys, w.condition, &observer.base, params, t)
+                .ok_or_else(|| not_evaluable(sys, t, &w.text, "the condition"))?
+                != 0.0;
+        }
+    }
+    for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
+        if dir != 0 {
+            history.set(sys, params, k, r.holds_after_crossing(dir > 0), t)?;
+        }
+    }
+    let tout1 = t + 1e-3 * (tspan.1 - tspan.0);
+    let mut changing = Vec::new();
+    for _ in 0..MAX_EVENT_ITERATIONS {
+        let specialized;
+        let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
+            specialized = sys.compiled.specialize(params);
+            &specialized
+        } else {
+            &sys.compiled
+        };
+        let (settings, extended) = ida_settings(sys, c, options);
+        let mut f = CompiledFunctions::new(c, params, extended);
+        (y, yp) = ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
+            Error::from(SolveError {
+                model: sys.model.name.clone(),
+                t: e.t,
+                flag: e.flag,
+                message: e.message,
+            })
+        })?;
+        if !observer.load(t, &y, &yp, params) {
+            return Ok((y, yp));
+        }
+        changing.clear();
+        for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
+            // A relation that crossed here keeps the value its crossing gave it.
+            if dir == 0 && history.set(sys, params, k, r.holds(observer.base[r.crossing]), t)? {
+                changing.push(r.text.clone());
+            }
+        }
+        for (w, h) in model.whens.iter().zip(&mut held) {
+            let now = evaluate(sys, w.condition, &observer.base, params, t)
+                .ok_or_else(|| not_evaluable(sys, t, &w.text, "the condition"))?
+                != 0.0;
+            if now && !*h {
+                // Every right-hand side at the point the round started from.
+                let base = observer.base.clone();
+                for &(p, e) in &w.assignments {
+                    params[p] = evaluate(sys, e, &base, params, t)
+                        .ok_or_else(|| not_evaluable(sys, t, &w.text, "an assigned value"))?;
+                }
+                for r in &w.reinits {
+                    y[r.unknown] = evaluate(sys, r.value, &base, params, t)
+                        .ok_or_else(|| not_evaluable(sys, t, &w.text, "a reinit value"))?;
+                }
+                changing.push(format!("when {}", w.text));
+            }
+            *h = now;
+        }
+        if changing.is_empty() {
+            return Ok((y, yp));
+        }
+    }
+    Err(unsettled(sys, t, &changing))
+}
