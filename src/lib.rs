@@ -313,11 +313,11 @@ pub use multibody_core::model::{
     StateSelect, System, TypedComponent, VarKind, Variable,
 };
 pub use multibody_core::simplify::{
-    DynamicStates, PhaseTimes, PlanarLoops, SimplifiedSystem, SimplifyOptions, StateCandidates,
-    Statistics,
+    DynamicStates, EventRelation, PhaseTimes, PlanarLoops, SimplifiedSystem, SimplifyOptions,
+    StateCandidates, Statistics,
 };
 pub use multibody_core::solve::{
-    DaeProblem, IdaStats, InitReport, LinearSolver, ProblemBuilder, Segment, Solution,
+    DaeProblem, Event, IdaStats, InitReport, LinearSolver, ProblemBuilder, Segment, Solution,
     SolverOptions,
 };
 #[doc = include_str!("../docs/macros/component.md")]
