@@ -288,7 +288,7 @@ impl Translator {
                 if !self.in_when || initial {
                     return Err(syn::Error::new(
                         c.span(),
-                        "reinit belongs inside a when clause: `when h.lt(0.0) { reinit(v, ..); }`",
+                        "reinit belongs inside a when clause: `when lt(h, 0.0) { reinit(v, ..); }`",
                     ));
                 }
                 let (state, value) = (&c.args[0], &c.args[1]);
