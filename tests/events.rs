@@ -1,15 +1,15 @@
-//! State and time events from relations (Modelica's semantics): located by the
-//! integrator's root finding, each recorded with its left and right limits, against
-//! closed-form solutions.
+//! State and time events from relations, `when` clauses and `sample` (Modelica's
+//! semantics): located by the integrator's root finding, each recorded with its left
+//! and right limits, against closed-form solutions.
 
 #![allow(missing_docs)]
 
 use std::f64::consts::PI;
 
 use multibody::Error;
-use multibody::blocks::Step;
+use multibody::blocks::{Constant, Feedback, Gain, Ramp, Sampler, Step, UnitDelay, ZeroOrderHold};
 use multibody::prelude::*;
-use multibody::rotational::{Inertia, Torque};
+use multibody::rotational::{Damper, Fixed, Inertia, SpeedSensor, Torque};
 
 component! {
     /// A mass on a spring that is stiffer when stretched (`x > 0`) than when
@@ -295,4 +295,128 @@ fn accumulating_bounces_end_with_an_error_at_the_accumulation_point() {
     assert_eq!(e.flag, "EVENT_ACCUMULATION", "{err}");
     assert!((e.t - t_inf).abs() < 1e-6, "{err}");
     assert!(err.to_string().contains("`ball.h < 0`"), "{err}");
+}
+
+#[test]
+fn sampled_speed_control_matches_the_discrete_time_closed_form() {
+    // An inertia J with viscous damping d, driven by tau_k = K (w_ref - w(t_k)) held
+    // over each sample period T (sampler, then a gain): between samples w relaxes
+    // toward tau_k / d, so w_{k+1} = a w_k + (1 - a) tau_k / d with a = exp(-d T / J).
+    let (j, d, k, w_ref, period): (f64, f64, f64, f64, f64) = (0.5, 0.2, 2.0, 10.0, 0.1);
+    let model = system! {
+        name: "sampled_control";
+        reference = Constant { k: w_ref };
+        sensor = SpeedSensor::default();
+        sampler = Sampler { sample_period: period };
+        error = Feedback::default();
+        gain = Gain { k };
+        torque = Torque::default();
+        inertia = Inertia { J: j };
+        damper = Damper { d };
+        ground = Fixed::default();
+        connect(inertia.flange_b, sensor.flange);
+        connect(sensor.w, sampler.u);
+        connect(reference.y, error.u1);
+        connect(sampler.y, error.u2);
+        connect(error.y, gain.u);
+        connect(gain.y, torque.tau);
+        connect(torque.flange, inertia.flange_a);
+        connect(ground.flange, damper.flange_a);
+        connect(damper.flange_b, inertia.flange_b);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let t_end = 2.0;
+    // Output times between the sample instants.
+    let times: Vec<f64> = (0..20).map(|m| 0.05 + period * m as f64).collect();
+    let sol = DaeProblem::new(
+        &ssys,
+        &[("inertia.phi", 0.0), ("inertia.w", 0.0)],
+        (0.0, t_end),
+    )
+    .unwrap()
+    .solve(&SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_times: Some(times.clone()),
+        ..SolverOptions::default()
+    })
+    .unwrap();
+    let a = (-d * period / j).exp();
+    let mut w_k = 0.0;
+    let mut held = Vec::new();
+    for _ in 0..20 {
+        let tau = k * (w_ref - w_k);
+        held.push((w_k, tau));
+        w_k = a * w_k + (1.0 - a) * tau / d;
+    }
+    let (w, tau) = (sol.get("inertia.w").unwrap(), sol.get("gain.y").unwrap());
+    for &t in &times {
+        let m = (t / period).floor() as usize;
+        let (w_m, tau_m) = held[m];
+        let exact = tau_m / d + (w_m - tau_m / d) * (-d * (t - m as f64 * period) / j).exp();
+        let i = sol.t().iter().position(|&s| s == t).unwrap();
+        assert!(
+            (w[i] - exact).abs() < 1e-7,
+            "w({t}) = {}, exact {exact}",
+            w[i]
+        );
+        // The control signal changes only at the sample instants.
+        assert!(
+            (tau[i] - tau_m).abs() < 1e-7,
+            "tau({t}) = {}, held {tau_m}",
+            tau[i]
+        );
+    }
+    // A sample at t = 0 and every period after it before t_end (the instants are
+    // multiples of the period, not sums of it).
+    let samples: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|e| e.value)
+        .map(|e| e.t)
+        .collect();
+    assert_eq!(samples.len(), 20, "{:?}", sol.events());
+    for (m, t) in samples.iter().enumerate() {
+        assert!((t - m as f64 * period).abs() < 1e-12, "sample {m} at {t}");
+    }
+}
+
+#[test]
+fn sampler_hold_and_unit_delay_of_a_ramp() {
+    // u = t: the sampler and the hold give T floor(t / T); the unit delay, fed by the
+    // sampler at the same instants, gives its value one period late (0 before).
+    let period = 0.25;
+    let model = system! {
+        name: "discrete_blocks";
+        ramp = Ramp { height: 10.0, duration: 10.0 };
+        sampler = Sampler { sample_period: period };
+        hold = ZeroOrderHold { sample_period: period };
+        delay = UnitDelay { sample_period: period };
+        connect(ramp.y, sampler.u);
+        connect(ramp.y, hold.u);
+        connect(sampler.y, delay.u);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let times: Vec<f64> = (0..12).map(|m| 0.1 + 0.2 * m as f64).collect();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.5))
+        .unwrap()
+        .solve(&SolverOptions {
+            output_times: Some(times.clone()),
+            ..SolverOptions::default()
+        })
+        .unwrap();
+    for &t in &times {
+        let m = (t / period).floor();
+        for (name, exact) in [
+            ("sampler.y", period * m),
+            ("hold.y", period * m),
+            ("delay.y", period * (m - 1.0).max(0.0)),
+        ] {
+            let got = sol.at(name, t).unwrap();
+            assert!(
+                (got - exact).abs() < 1e-9,
+                "{name}({t}) = {got}, exact {exact}"
+            );
+        }
+    }
 }

@@ -52,6 +52,32 @@ fn call_name(e: &Expr) -> Option<(String, &syn::ExprCall)> {
     }
 }
 
+/// `sample(start, interval)` in a `when` condition made the builder's
+/// `__s.sample(start, interval)` (it declares what it needs in the component).
+fn with_samples(e: &mut Expr) {
+    match e {
+        Expr::Call(c) => {
+            if call_name(&Expr::Call(c.clone())).is_some_and(|(n, _)| n == "sample") {
+                let args = &c.args;
+                *e = syn::parse_quote_spanned!(c.span()=> __s.sample(#args));
+                return;
+            }
+            c.args.iter_mut().for_each(with_samples);
+        }
+        Expr::MethodCall(m) => {
+            with_samples(&mut m.receiver);
+            m.args.iter_mut().for_each(with_samples);
+        }
+        Expr::Binary(b) => {
+            with_samples(&mut b.left);
+            with_samples(&mut b.right);
+        }
+        Expr::Unary(u) => with_samples(&mut u.expr),
+        Expr::Paren(p) => with_samples(&mut p.expr),
+        _ => {}
+    }
+}
+
 impl Translator {
     /// Translates a list of statements.
     pub fn translate(&mut self, stmts: &[Stmt], initial: bool) -> syn::Result<TokenStream> {
@@ -180,12 +206,16 @@ impl Translator {
         if self.in_when {
             return Err(syn::Error::new(c.span(), "when clauses do not nest"));
         }
-        let condition = &c.args[0];
+        let mut condition = c.args[0].clone();
+        with_samples(&mut condition);
         self.in_when = true;
         let body = self.block(&i.then_branch, false);
         self.in_when = false;
         let body = body?;
-        Ok(quote_spanned!(c.span()=> __s.when(#condition, |__s| #body);))
+        Ok(quote_spanned!(c.span()=> {
+            let __condition = #condition;
+            __s.when(__condition, |__s| #body);
+        }))
     }
 
     /// `if rooted(x) { A } else { B }` / `if is_root(x) { A } else { B }`.

@@ -1,13 +1,15 @@
-//! Signal blocks (MSL `Modelica.Blocks`): sources, math and continuous (linear and
-//! PID) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
+//! Signal blocks (MSL `Modelica.Blocks`): sources, math, continuous (linear and
+//! PID) and discrete (sampled) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
 //! exactly one `RealOutput`.
 
 mod continuous;
+mod discrete;
 mod interfaces;
 mod math;
 mod sources;
 
 pub use continuous::*;
+pub use discrete::*;
 pub use interfaces::*;
 pub use math::*;
 pub use sources::*;

@@ -150,6 +150,8 @@ pub struct FlatSystem {
     pub structural: Vec<String>,
     /// `when` clauses.
     pub whens: Vec<FlatWhen>,
+    /// The conditions of `sample(..)` (relations `time >= next`).
+    pub samples: Vec<Id>,
 }
 
 /// A `when` clause of a flat system (see [`WhenClause`](super::WhenClause)).
@@ -423,6 +425,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             assertions: Vec::new(),
             structural: Vec::new(),
             whens: Vec::new(),
+            samples: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -657,6 +660,15 @@ impl<'s> Flattener<'_, 's> {
                 component: component(),
                 message: "reinit(..) belongs inside a when clause".into(),
             });
+        }
+        for &c in &s.samples {
+            let o = Origin::Component {
+                path: path.clone(),
+                equation: Equation { lhs: c, rhs: c },
+            };
+            if let Some(c) = self.translate(c, &o) {
+                self.flat.samples.push(c);
+            }
         }
         for w in &s.whens {
             let origin = |equation: Equation| Origin::Component {

@@ -90,6 +90,8 @@ pub struct System {
     pub whens: Vec<WhenClause>,
     /// `reinit` statements of the `when` clause being built.
     pub(crate) reinits: Vec<Equation>,
+    /// The conditions that [`System::sample`] made.
+    pub samples: Vec<Expr>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
 }
@@ -204,6 +206,7 @@ impl System {
             checks: None,
             whens: Vec::new(),
             reinits: Vec::new(),
+            samples: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -354,6 +357,25 @@ impl System {
             equations,
             reinits,
         });
+    }
+
+    /// Modelica's `sample(start, interval)`, the condition of a [`when`](Self::when)
+    /// clause that holds at the instants `start + k interval` (k = 0, 1, ...): each a
+    /// time event, the first at the initial time when `start` is not later. It is
+    /// `time >= start + sampleN.count * interval`, with a hidden counter that a clause
+    /// of its own advances (so that the instants are exact multiples, not sums).
+    pub fn sample(&mut self, start: impl Into<Expr>, interval: impl Into<Expr>) -> Expr {
+        let k = self.samples.len() + 1;
+        let count = self.variable(
+            Variable::new(format!("sample{k}.count"))
+                .start(0.0)
+                .description("instants of sample(start, interval) so far"),
+        );
+        let (start, interval) = (self.own(start.into()), self.own(interval.into()));
+        let condition = self.own(Expr::time().ge(start + count * interval));
+        self.samples.push(condition);
+        self.when(condition, |s| s.equation(count, count.pre() + 1.0));
+        condition
     }
 
     /// `reinit(state, value)` inside a [`when`](Self::when) clause: at its event, the

@@ -82,6 +82,10 @@ pub struct EventRelation {
     pub crossing: usize,
     /// The relation as written in the model (`ball.h < 0`).
     pub text: String,
+    /// Whether it is the condition of a `sample(..)`: false at the initialization,
+    /// and true from an event at the initial time when the first instant is not
+    /// later.
+    pub sample: bool,
 }
 
 impl EventRelation {
@@ -250,6 +254,7 @@ fn relations(flat: &mut FlatSystem) -> Relations {
             parameter,
             crossing,
             text,
+            sample: flat.samples.contains(&c),
         });
     }
     // The relations held: every equation sees the relation parameters (the crossing

@@ -60,7 +60,8 @@ pub(super) fn settle_initial_relations(
         }
         let mut params = init.params.clone();
         changing.clear();
-        for r in relations {
+        // The conditions of sample(..) become true at an event of their own.
+        for r in relations.iter().filter(|r| !r.sample) {
             let value = r.holds(observer.base[r.crossing]);
             if (params[r.parameter] != 0.0) != value {
                 params[r.parameter] = f64::from(u8::from(value));
@@ -73,6 +74,33 @@ pub(super) fn settle_initial_relations(
         init = reinit(params)?;
     }
     Err(unsettled(sys, t0, &changing))
+}
+
+/// The crossing functions of an event at the initial point `(t0, y, yp)`: the
+/// conditions of `sample(..)` whose first instant is the initial time (rising), when
+/// there are such.
+pub(super) fn initial_samples(
+    sys: &SimplifiedSystem,
+    (t0, y, yp): (f64, &[f64], &[f64]),
+    params: &[f64],
+) -> Option<Vec<i32>> {
+    let relations = &sys.model.events.relations;
+    if !relations.iter().any(|r| r.sample) {
+        return None;
+    }
+    let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+    if !observer.load(t0, y, yp, params) {
+        return None;
+    }
+    let roots: Vec<i32> = relations
+        .iter()
+        .map(|r| {
+            let starts =
+                r.sample && params[r.parameter] == 0.0 && r.holds(observer.base[r.crossing]);
+            i32::from(starts)
+        })
+        .collect();
+    roots.contains(&1).then_some(roots)
 }
 
 /// The value of a `when` clause's expression `e` at a point: the flat variables'
@@ -99,6 +127,11 @@ fn not_evaluable(sys: &SimplifiedSystem, t: f64, clause: &str, what: &str) -> Er
     }
     .into()
 }
+
+/// A crossing function this close to zero is at its zero (the root finding locates it
+/// to about the rounding of time, where a crossing function is many orders of
+/// magnitude smaller than this).
+const CROSSING_ZERO: f64 = 1e-8;
 
 /// Times a relation takes the same value in quick succession before the events are
 /// said to accumulate.
@@ -241,8 +274,14 @@ pub(super) fn settle(
         }
         changing.clear();
         for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
-            // A relation that crossed here keeps the value its crossing gave it.
-            if dir == 0 && history.set(sys, params, k, r.holds(observer.base[r.crossing]), t)? {
+            // A relation that crossed here keeps the value its crossing gave it while
+            // its crossing function stays at zero (where evaluating it decides
+            // nothing); one that a reinit or a discrete change moved away is evaluated.
+            let g = observer.base[r.crossing];
+            if dir != 0 && g.abs() <= CROSSING_ZERO {
+                continue;
+            }
+            if history.set(sys, params, k, r.holds(g), t)? {
                 changing.push(r.text.clone());
             }
         }

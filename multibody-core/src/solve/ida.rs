@@ -1069,6 +1069,94 @@ pub fn consistent_values(
     }
 }
 
+/// A system without unknowns as IDA sees it when it has crossing functions (of time
+/// alone): one unknown `z` with `z' = 0`, so that they are watched all the same.
+struct Placeholder<'a> {
+    inner: &'a mut dyn DaeFunctions,
+}
+
+impl DaeFunctions for Placeholder<'_> {
+    fn len(&self) -> usize {
+        1
+    }
+
+    fn residual(
+        &mut self,
+        _: f64,
+        _: &[f64],
+        yp: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), EvalError> {
+        out[0] = yp[0];
+        Ok(())
+    }
+
+    fn jacobian_pattern(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+        Some((vec![0, 1], vec![0]))
+    }
+
+    fn jacobian(
+        &mut self,
+        _: f64,
+        _: &[f64],
+        _: &[f64],
+        cj: f64,
+        values: &mut [f64],
+    ) -> Result<(), EvalError> {
+        values[0] = cj;
+        Ok(())
+    }
+
+    fn n_roots(&self) -> usize {
+        self.inner.n_roots()
+    }
+
+    fn roots(&mut self, t: f64, _: &[f64], _: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.inner.roots(t, &[], &[], out)
+    }
+}
+
+/// [`integrate_monitored`] of a system without unknowns but with crossing functions,
+/// through a [`Placeholder`].
+#[allow(clippy::type_complexity)]
+fn integrate_placeholder(
+    f: &mut dyn DaeFunctions,
+    t0: f64,
+    settings: &IdaSettings,
+    output: &OutputMode,
+    on_output: &mut dyn FnMut(f64, &[f64], &[f64]) -> bool,
+    on_step: Option<&mut dyn FnMut(f64, &[f64], &[f64]) -> bool>,
+) -> Result<Integrated, IdaError> {
+    let settings = IdaSettings {
+        id: vec![1.0],
+        atol_vector: None,
+        matrix: IdaMatrix::Dense,
+        calc_ic: false,
+        ..settings.clone()
+    };
+    let mut p = Placeholder { inner: f };
+    let mut step = on_step;
+    let mut on_step = step
+        .as_mut()
+        .map(|m| move |t: f64, _: &[f64], _: &[f64]| m(t, &[], &[]));
+    let r = integrate_monitored(
+        &mut p,
+        t0,
+        &[0.0],
+        &[0.0],
+        &settings,
+        output,
+        &mut |t, _, _| on_output(t, &[], &[]),
+        on_step
+            .as_mut()
+            .map(|m| m as &mut dyn FnMut(f64, &[f64], &[f64]) -> bool),
+    )?;
+    Ok(Integrated {
+        stopped: r.stopped.map(|(t, _, _)| (t, Vec::new(), Vec::new())),
+        ..r
+    })
+}
+
 /// How an integration with a step monitor ended.
 #[derive(Clone, Debug)]
 pub struct Integrated {
@@ -1100,6 +1188,9 @@ pub fn integrate_monitored(
     let n = f.len();
     validate(n, t0, y0, yp0, settings, output)?;
 
+    if n == 0 && f.n_roots() > 0 {
+        return integrate_placeholder(f, t0, settings, output, on_output, on_step);
+    }
     if n == 0 {
         // Nothing to integrate: report the requested times.
         on_output(t0, &[], &[]);
@@ -1159,10 +1250,30 @@ pub fn integrate_monitored(
         let mut t = t0;
         let mut stopped = None;
         let mut roots = Vec::new();
+        // Times IDA cannot step to from t0 (a restart just before an output time or the
+        // end): they take the values at t0.
+        let far =
+            |tout: f64| (tout - t0).abs() > 1e3 * f64::EPSILON * t0.abs().max(tout.abs()).max(1.0);
+        if !far(t_end) {
+            let times = match output {
+                OutputMode::Times(times) => times.clone(),
+                OutputMode::EveryStep { t_end } => vec![*t_end],
+            };
+            for tout in times {
+                if !on_output(tout, vec_ref(yy, n), vec_ref(yp, n)) {
+                    return Err(stopped_err(t0));
+                }
+            }
+            return Ok(Integrated {
+                stats: stats(mem),
+                stopped: None,
+                roots: Vec::new(),
+            });
+        }
         // The first call's target sets IDA's estimate of the first step: the first
         // output time, as when integrating to each output in turn.
         let mut target = match output {
-            OutputMode::Times(times) => times.first().copied().unwrap_or(t_end),
+            OutputMode::Times(times) => times.iter().copied().find(|&t| far(t)).unwrap_or(t_end),
             OutputMode::EveryStep { t_end } => *t_end,
         };
         // Steps since the last reported point (IDA counts per call, and every call here

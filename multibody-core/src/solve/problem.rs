@@ -707,6 +707,25 @@ impl<'a> DaeProblem<'a> {
         // singular point (`None` outside one), and the relaxation.
         let mut bridge_end: Option<f64> = None;
         let mut relaxation = BRIDGE_RELAXATION;
+        if let Some(roots) = super::events::initial_samples(sys, (t0, &u0, &up0), &params) {
+            // An event at the initial time: its left limit is a segment of its own.
+            run.segments.push(Segment {
+                first: run.t.len(),
+                params: params.clone(),
+            });
+            run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
+            let (y, yp) = super::events::settle(
+                sys,
+                self.tspan,
+                &mut params,
+                (t0, u0, up0),
+                &roots,
+                options,
+                &mut run.events,
+            )
+            .map_err(Degraded::Error)?;
+            (u0, up0) = (y, yp);
+        }
         loop {
             let segment = Segment {
                 first: run.t.len(),
