@@ -7,7 +7,10 @@
 use std::f64::consts::PI;
 
 use multibody::Error;
-use multibody::blocks::{Constant, Feedback, Gain, Ramp, Sampler, Step, UnitDelay, ZeroOrderHold};
+use multibody::blocks::{
+    Constant, Feedback, Gain, Pulse, Ramp, Sampler, SawTooth, Step, Trapezoid, UnitDelay,
+    ZeroOrderHold,
+};
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Fixed, Inertia, SpeedSensor, Torque};
 
@@ -418,5 +421,66 @@ fn sampler_hold_and_unit_delay_of_a_ramp() {
                 "{name}({t}) = {got}, exact {exact}"
             );
         }
+    }
+}
+
+#[test]
+fn periodic_sources_against_their_definitions() {
+    // Pulse: 1 + 2 for the first 30 % of each 0.5 s period from 0.2 s, three periods.
+    // SawTooth: t mod 0.5 / 0.5. Trapezoid: up over 0.1 s, 0.2 s at 1, down over 0.1 s.
+    let model = system! {
+        name: "periodic";
+        pulse = Pulse { amplitude: 2.0, width: 30.0, period: 0.5, nperiod: 3.0,
+                        offset: 1.0, start_time: 0.2 };
+        saw = SawTooth { period: 0.5 };
+        trapezoid = Trapezoid { rising: 0.1, width: 0.2, falling: 0.1, period: 0.5 };
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    let pulse = |t: f64| {
+        let s = t - 0.2;
+        if !(0.0..1.5).contains(&s) || s % 0.5 >= 0.15 {
+            1.0
+        } else {
+            3.0
+        }
+    };
+    let trapezoid = |t: f64| {
+        let s = t % 0.5;
+        if s < 0.1 {
+            s / 0.1
+        } else if s < 0.3 {
+            1.0
+        } else if s < 0.4 {
+            (0.4 - s) / 0.1
+        } else {
+            0.0
+        }
+    };
+    for t in [
+        0.05, 0.1, 0.25, 0.33, 0.4, 0.62, 0.75, 0.9, 1.3, 1.5, 1.75, 1.95,
+    ] {
+        for (name, exact) in [
+            ("pulse.y", pulse(t)),
+            ("saw.y", (t % 0.5) / 0.5),
+            ("trapezoid.y", trapezoid(t)),
+        ] {
+            let got = sol.at(name, t).unwrap();
+            assert!(
+                (got - exact).abs() < 1e-9,
+                "{name}({t}) = {got}, exact {exact}"
+            );
+        }
+    }
+    // The pulse's edges are events at their exact times.
+    for edge in [0.2, 0.35, 0.7, 0.85, 1.2, 1.35] {
+        assert!(
+            sol.events().iter().any(|e| (e.t - edge).abs() < 1e-12),
+            "no event at {edge}: {:?}",
+            sol.events()
+        );
     }
 }

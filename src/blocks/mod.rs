@@ -6,10 +6,12 @@ mod continuous;
 mod discrete;
 mod interfaces;
 mod math;
+mod periodic;
 mod sources;
 
 pub use continuous::*;
 pub use discrete::*;
 pub use interfaces::*;
 pub use math::*;
+pub use periodic::*;
 pub use sources::*;
