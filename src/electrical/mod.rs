@@ -5,6 +5,9 @@ use crate::blocks::RealInput;
 use crate::prelude::*;
 use crate::rotational;
 
+mod ideal;
+pub use ideal::*;
+
 connector! {
     /// An electrical pin (MSL `Pin`, `PositivePin`, `NegativePin`).
     pub struct Pin {
