@@ -13,6 +13,7 @@ use multibody::blocks::{
 };
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Fixed, Inertia, SpeedSensor, Torque};
+use multibody::translational::{ElastoGap, Mass};
 
 component! {
     /// A mass on a spring that is stiffer when stretched (`x > 0`) than when
@@ -481,6 +482,58 @@ fn periodic_sources_against_their_definitions() {
             sol.events().iter().any(|e| (e.t - edge).abs() < 1e-12),
             "no event at {edge}: {:?}",
             sol.events()
+        );
+    }
+}
+
+#[test]
+fn a_mass_rebounds_from_an_elasto_gap_after_half_a_period() {
+    // A unit mass at s = 1 moving at -1 m/s towards a gap (c = 100 N/m, no damping)
+    // whose contact begins at s = 0.5: it touches at t = 0.5, stays in contact for
+    // pi / w (w = 10 rad/s) and leaves at +1 m/s.
+    let (c, w) = (100.0, 10.0);
+    let model = system! {
+        name: "gap";
+        ground = multibody::translational::Fixed::default();
+        gap = ElastoGap { c, d: 0.0, s_rel0: 0.5 };
+        mass = Mass { m: 1.0 };
+        connect(ground.flange, gap.flange_a);
+        connect(gap.flange_b, mass.flange_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[("mass.s", 1.0), ("mass.v", -1.0)], (0.0, 1.5))
+        .unwrap()
+        .solve(&options(1.5, 60))
+        .unwrap();
+    let t_out = 0.5 + PI / w;
+    let contact: Vec<(f64, bool)> = sol
+        .events()
+        .iter()
+        .filter(|e| e.condition == "gap.s_rel < gap.s_rel0")
+        .map(|e| (e.t, e.value))
+        .collect();
+    assert_eq!(contact.len(), 2, "{:?}", sol.events());
+    assert!(
+        (contact[0].0 - 0.5).abs() < 1e-9 && contact[0].1,
+        "{contact:?}"
+    );
+    assert!(
+        (contact[1].0 - t_out).abs() < 1e-8 && !contact[1].1,
+        "{contact:?}"
+    );
+    let s = sol.get("mass.s").unwrap();
+    for (k, &t) in sol.t().iter().enumerate() {
+        let exact = if t <= 0.5 {
+            1.0 - t
+        } else if t <= t_out {
+            0.5 - (w * (t - 0.5)).sin() / w
+        } else {
+            0.5 + (t - t_out)
+        };
+        assert!(
+            (s[k] - exact).abs() < 1e-7,
+            "s({t}) = {}, exact {exact}",
+            s[k]
         );
     }
 }

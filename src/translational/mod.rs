@@ -141,6 +141,41 @@ component! {
 }
 
 component! {
+    /// A spring and a damper in contact only (MSL `Translational.Components.ElastoGap`):
+    /// while `s_rel < s_rel0` they push the flanges apart, never pull (the damping
+    /// force is limited by the spring force); outside contact the force is zero. The
+    /// start and the end of a contact are events.
+    #[type_name = "Translational.ElastoGap"]
+    pub struct ElastoGap {
+        /// Spring constant [N/m] (at least 0), default 1.
+        parameter c(min = 0.0): f64 = 1.0;
+        /// Damping constant [N.s/m] (at least 0), default 1.
+        parameter d(min = 0.0): f64 = 1.0;
+        /// Relative distance where contact begins [m], default 0.
+        parameter s_rel0: f64 = 0.0;
+        /// Exponent of the spring force, `f_c = -c |s_rel - s_rel0|^n` (at least 1),
+        /// default 1 (fixed when the model is built; a parameter in MSL).
+        structural n: f64 = 1.0;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, s_rel, v_rel, f };
+        /// Spring force [N].
+        variable f_c: Real;
+        /// Linear damping force [N].
+        variable f_d2: Real;
+        /// Damping force limited by the spring force [N].
+        variable f_d: Real;
+        equation {
+            assert(n >= 1.0, format!("parameter `n` = {n} must be at least 1"));
+            let contact = lt(s_rel, s_rel0);
+            f_c = smooth(1, no_event(if_else(contact, -c * pow(abs(s_rel - s_rel0), n), 0.0)));
+            f_d2 = if_else(contact, d * v_rel, 0.0);
+            let limited = if_else(lt(f_d2, f_c), f_c, if_else(gt(f_d2, -f_c), -f_c, f_d2));
+            f_d = smooth(0, no_event(if_else(contact, limited, 0.0)));
+            f = if_else(contact, f_c + f_d, 0.0);
+        }
+    }
+}
+
+component! {
     /// Applies the input force `f` to `flange` (MSL `Translational.Sources.Force`); the
     /// reaction acts on `support` when `use_support`, otherwise on a fixed housing.
     #[type_name = "Translational.Force"]
