@@ -207,9 +207,16 @@ impl CompiledDae {
     /// # Panics
     /// If `params` does not have [`InputLayout::n_params`] values.
     pub fn specialize(&self, params: &[f64]) -> CompiledDae {
+        let values: Vec<Option<f64>> = params.iter().copied().map(Some).collect();
+        self.specialize_partly(&values)
+    }
+
+    /// [`Self::specialize`] to the parameters with a value (`Some`); the others (those
+    /// that events change) stay inputs.
+    pub fn specialize_partly(&self, params: &[Option<f64>]) -> CompiledDae {
         CompiledDae {
             layout: self.layout,
-            residual: self.residual.specialize(params),
+            residual: self.residual.specialize_partly(params),
             jacobian: std::sync::OnceLock::new(),
             extended: std::sync::OnceLock::new(),
             observed: self.observed.clone(),

@@ -36,6 +36,17 @@ impl Tape {
     /// # Panics
     /// If `values` does not have one value per invariant slot.
     pub fn specialize(&self, values: &[f64]) -> Tape {
+        let values: Vec<Option<f64>> = values.iter().copied().map(Some).collect();
+        self.specialize_partly(&values)
+    }
+
+    /// [`Self::specialize`] for the invariant inputs with a value (`Some`); those
+    /// without one (`None`, such as the parameters that events change) stay inputs of
+    /// the result.
+    ///
+    /// # Panics
+    /// If `values` does not have one entry per invariant slot.
+    pub fn specialize_partly(&self, values: &[Option<f64>]) -> Tape {
         let (lo, hi) = self.invariant_inputs;
         assert_eq!(
             values.len(),
@@ -52,8 +63,10 @@ impl Tape {
             let m = |r: u32| map[r as usize];
             map[i] = match self.ops[i] {
                 Op::Const(k) => b.constant(self.consts[k as usize]),
-                Op::Input(s) if (lo..hi).contains(&(s as usize)) => {
-                    b.constant(values[s as usize - lo])
+                Op::Input(s)
+                    if (lo..hi).contains(&(s as usize)) && values[s as usize - lo].is_some() =>
+                {
+                    b.constant(values[s as usize - lo].unwrap_or_default())
                 }
                 Op::Scale(k, a) => {
                     let k = b.const_slot(self.consts[k as usize]);

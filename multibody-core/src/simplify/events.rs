@@ -41,6 +41,28 @@ impl Events {
     pub fn is_empty(&self) -> bool {
         self.relations.is_empty() && self.whens.is_empty()
     }
+
+    /// Per parameter (of `n`): whether events change it (a relation's value, a
+    /// discrete variable, a `pre` value).
+    pub fn parameters(&self, n: usize) -> Vec<bool> {
+        let mut changing = vec![false; n];
+        let indices = self
+            .relations
+            .iter()
+            .map(|r| r.parameter)
+            .chain(self.pre.iter().map(|&(p, _)| p))
+            .chain(
+                self.whens
+                    .iter()
+                    .flat_map(|w| w.assignments.iter().map(|&(p, _)| p)),
+            );
+        for p in indices {
+            if let Some(c) = changing.get_mut(p) {
+                *c = true;
+            }
+        }
+        changing
+    }
 }
 
 /// A `when` clause, its expressions in the system's arena (relations of the condition

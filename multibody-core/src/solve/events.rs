@@ -15,8 +15,9 @@ use super::error::SolveError;
 use super::ida;
 use super::init::InitResult;
 use super::options::SolverOptions;
-use super::problem::{CompiledFunctions, ida_settings, unknowns_of};
+use super::problem::{CompiledFunctions, ida_settings, specialized_for, unknowns_of};
 use super::solution::Event;
+use crate::codegen::dae::CompiledDae;
 
 /// Rounds of the event iteration before it is given up.
 const MAX_EVENT_ITERATIONS: usize = 20;
@@ -212,8 +213,29 @@ impl History {
 /// [`ida::Integrated::roots`]) ended the integration with the left limit `(y, yp)`:
 /// returns the right limit, with `params` holding the new relation values and
 /// discrete variables; the relations that changed are recorded in `events`.
+/// `specialized` holds the compiled functions specialized for the run (see
+/// [`specialized_for`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn settle(
+    sys: &SimplifiedSystem,
+    tspan: (f64, f64),
+    params: &mut [f64],
+    point: (f64, Vec<f64>, Vec<f64>),
+    roots: &[i32],
+    options: &SolverOptions,
+    (history, specialized): (&mut History, &mut Option<(Vec<f64>, CompiledDae)>),
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let cache = specialized_for(sys, params, options, specialized.take());
+    let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
+    let result = settle_with(c, sys, tspan, params, point, roots, options, history);
+    *specialized = cache;
+    result
+}
+
+/// [`settle`] with the compiled functions `c`.
+#[allow(clippy::too_many_arguments)]
+fn settle_with(
+    c: &CompiledDae,
     sys: &SimplifiedSystem,
     tspan: (f64, f64),
     params: &mut [f64],
@@ -252,13 +274,6 @@ pub(super) fn settle(
     let tout1 = t + 1e-3 * (tspan.1 - tspan.0);
     let mut changing = Vec::new();
     for _ in 0..MAX_EVENT_ITERATIONS {
-        let specialized;
-        let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
-            specialized = sys.compiled.specialize(params);
-            &specialized
-        } else {
-            &sys.compiled
-        };
         let (settings, extended) = ida_settings(sys, c, options);
         let mut f = CompiledFunctions::new(c, params, extended);
         (y, yp) = ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {

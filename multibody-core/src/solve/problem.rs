@@ -698,6 +698,7 @@ impl<'a> DaeProblem<'a> {
             stats: IdaStats::default(),
             points_left: options.max_points,
             events: super::events::History::new(sys, self.tspan),
+            specialized: None,
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -721,7 +722,7 @@ impl<'a> DaeProblem<'a> {
                 (t0, u0, up0),
                 &roots,
                 options,
-                &mut run.events,
+                (&mut run.events, &mut run.specialized),
             )
             .map_err(Degraded::Error)?;
             (u0, up0) = (y, yp);
@@ -791,7 +792,7 @@ impl<'a> DaeProblem<'a> {
                         (t, y, yp),
                         &roots,
                         options,
-                        &mut run.events,
+                        (&mut run.events, &mut run.specialized),
                     )
                     .map_err(Degraded::Error)?;
                     (t0, u0, up0) = (t, y, yp);
@@ -899,13 +900,38 @@ impl<'a> DaeProblem<'a> {
         watched: bool,
     ) -> Result<SegmentEnd, Error> {
         let sys = self.sys;
-        let specialized;
-        let c = if options.specialize_parameters && sys.compiled.layout.n_params > 0 {
-            specialized = sys.compiled.specialize(params);
-            &specialized
-        } else {
-            &sys.compiled
-        };
+        let specialized = run.specialized.take();
+        let specialized = specialized_for(sys, params, options, specialized);
+        let result = self.integrate_with(
+            specialized.as_ref().map_or(&sys.compiled, |(_, c)| c),
+            params,
+            (t0, t_end),
+            (u0, up0),
+            output_times,
+            options,
+            observer,
+            run,
+            watched,
+        );
+        run.specialized = specialized;
+        result
+    }
+
+    /// [`Self::integrate_segment`] with the compiled functions `c`.
+    #[allow(clippy::too_many_arguments)]
+    fn integrate_with(
+        &self,
+        c: &CompiledDae,
+        params: &[f64],
+        (t0, t_end): (f64, f64),
+        (u0, up0): (&[f64], &[f64]),
+        output_times: Option<Vec<f64>>,
+        options: &SolverOptions,
+        observer: &mut Observer<'_>,
+        run: &mut Run,
+        watched: bool,
+    ) -> Result<SegmentEnd, Error> {
+        let sys = self.sys;
         let n = u0.len();
         let (settings, extended) = ida_settings(sys, c, options);
         let output = match output_times {
@@ -1164,6 +1190,9 @@ struct Run {
     stats: IdaStats,
     points_left: usize,
     events: super::events::History,
+    /// The compiled functions specialized to the parameters that events do not change,
+    /// with those parameters' values (kept while they do not change).
+    specialized: Option<(Vec<f64>, CompiledDae)>,
 }
 
 impl Run {
@@ -1209,6 +1238,40 @@ pub(super) fn unknowns_of(sys: &SimplifiedSystem, slot_values: &[f64]) -> (Vec<f
         up.push(sys.reduction.var_diff[s].map_or(0.0, |d| slot_values[d]));
     }
     (u, up)
+}
+
+/// The compiled functions of `sys` for `params` when they are specialized (see
+/// [`SolverOptions::specialize_parameters`]): specialized to every parameter but those
+/// that events change, which stay inputs, so that one specialization serves every
+/// segment of a run with events. `cached` is reused when it was made for the same
+/// values.
+pub(super) fn specialized_for(
+    sys: &SimplifiedSystem,
+    params: &[f64],
+    options: &SolverOptions,
+    cached: Option<(Vec<f64>, CompiledDae)>,
+) -> Option<(Vec<f64>, CompiledDae)> {
+    if !options.specialize_parameters || sys.compiled.layout.n_params == 0 {
+        return None;
+    }
+    let changing = sys.model.events.parameters(params.len());
+    let key: Vec<f64> = params
+        .iter()
+        .zip(&changing)
+        .map(|(&p, &c)| if c { 0.0 } else { p })
+        .collect();
+    let same = |k: &[f64]| k.iter().zip(&key).all(|(a, b)| a.to_bits() == b.to_bits());
+    if let Some((k, c)) = cached
+        && same(&k)
+    {
+        return Some((k, c));
+    }
+    let values: Vec<Option<f64>> = params
+        .iter()
+        .zip(&changing)
+        .map(|(&p, &c)| (!c).then_some(p))
+        .collect();
+    Some((key, sys.compiled.specialize_partly(&values)))
 }
 
 /// IDA's settings for `sys` with the compiled functions `c` (the system's own, or
