@@ -318,7 +318,7 @@ pub use multibody_core::simplify::{
 };
 pub use multibody_core::solve::{
     DaeProblem, Event, IdaStats, InitReport, LinearSolver, ProblemBuilder, Segment, Solution,
-    SolverOptions,
+    SolverOptions, Termination,
 };
 #[doc = include_str!("../docs/macros/component.md")]
 pub use multibody_macros::component;

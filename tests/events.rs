@@ -537,3 +537,46 @@ fn a_mass_rebounds_from_an_elasto_gap_after_half_a_period() {
         );
     }
 }
+
+component! {
+    /// The bouncing ball, ended by `terminate` at its third impact.
+    pub struct ThreeBounces {
+        /// Height \[m\].
+        variable h(start = 1.0, fixed = true): Real;
+        /// Velocity \[m/s\].
+        variable v(start = 0.0, fixed = true): Real;
+        /// Bounces so far.
+        variable bounces(start = 0.0): Real;
+        equation {
+            der(h) = v;
+            der(v) = -9.81;
+            when lt(h, 0.0) {
+                reinit(v, -0.8 * pre(v));
+                bounces = pre(bounces) + 1.0;
+            }
+            when ge(bounces, 3.0) {
+                terminate("three bounces");
+            }
+        }
+    }
+}
+
+#[test]
+fn terminate_ends_the_simulation_at_its_event() {
+    let t1 = (2.0f64 / 9.81).sqrt();
+    let t3 = t1 * (1.0 + 2.0 * 0.8 + 2.0 * 0.64);
+    let mut model = System::new("terminating");
+    model.add("ball", &ThreeBounces::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 10.0))
+        .unwrap()
+        .solve(&options(10.0, 100))
+        .unwrap();
+    let end = sol.terminated().expect("terminated");
+    assert!((end.t - t3).abs() < 1e-8, "{end:?}, exact {t3}");
+    assert_eq!(end.message, "ball: three bounces");
+    // The solution ends there, after the impact.
+    assert_eq!(*sol.t().last().unwrap(), end.t);
+    assert_eq!(sol.final_value("ball.bounces").unwrap(), 3.0);
+    assert!(sol.final_value("ball.v").unwrap() > 0.0);
+}

@@ -324,6 +324,22 @@ impl Translator {
                 let (state, value) = (&c.args[0], &c.args[1]);
                 Ok(quote_spanned!(c.span()=> __s.reinit(#state, #value);))
             }
+            Expr::Call(c) if call_name(e).is_some_and(|(n, _)| n == "terminate") => {
+                if c.args.len() != 1 {
+                    return Err(syn::Error::new(
+                        c.span(),
+                        "terminate takes the reason, `terminate(\"the path is done\")`",
+                    ));
+                }
+                if !self.in_when || initial {
+                    return Err(syn::Error::new(
+                        c.span(),
+                        "terminate belongs inside a when clause: `when ge(time, 2.0) { terminate(\"..\"); }`",
+                    ));
+                }
+                let message = &c.args[0];
+                Ok(quote_spanned!(c.span()=> __s.terminate(#message);))
+            }
             Expr::Call(c) if call_name(e).is_some_and(|(n, _)| n == "assert") => {
                 if c.args.len() != 2 {
                     return Err(syn::Error::new(

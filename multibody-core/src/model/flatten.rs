@@ -165,6 +165,8 @@ pub struct FlatWhen {
     pub assignments: Vec<(u32, Id)>,
     /// `(state, value)` of its `reinit`s.
     pub reinits: Vec<(u32, Id)>,
+    /// The message of its `terminate(..)`.
+    pub terminate: Option<String>,
 }
 
 /// Names of a flat system's leaves.
@@ -655,10 +657,10 @@ impl<'s> Flattener<'_, 's> {
                 s.path.clone()
             }
         };
-        if !s.reinits.is_empty() {
+        if !s.reinits.is_empty() || !s.terminates.is_empty() {
             self.errors.push(ModelError::InvalidWhen {
                 component: component(),
-                message: "reinit(..) belongs inside a when clause".into(),
+                message: "reinit(..) and terminate(..) belong inside a when clause".into(),
             });
         }
         for &c in &s.samples {
@@ -706,11 +708,16 @@ impl<'s> Flattener<'_, 's> {
             };
             let assignments = pairs(&w.equations, "the left-hand side");
             let reinits = pairs(&w.reinits, "the first argument of reinit");
+            let terminate = w.terminate.as_ref().map(|m| {
+                let at = if s.path.is_empty() { "model" } else { &s.path };
+                format!("{at}: {m}")
+            });
             self.flat.whens.push(FlatWhen {
                 path: path.clone(),
                 condition,
                 assignments,
                 reinits,
+                terminate,
             });
         }
     }

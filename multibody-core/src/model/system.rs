@@ -90,6 +90,8 @@ pub struct System {
     pub whens: Vec<WhenClause>,
     /// `reinit` statements of the `when` clause being built.
     pub(crate) reinits: Vec<Equation>,
+    /// `terminate` statements of the `when` clause being built.
+    pub(crate) terminates: Vec<SharedText>,
     /// The conditions that [`System::sample`] made.
     pub samples: Vec<Expr>,
     /// Where the model's expressions live (shared by every system of one model).
@@ -119,6 +121,8 @@ pub struct WhenClause {
     pub equations: Vec<Equation>,
     /// `x = expr` of `reinit(x, expr)`, `x` a state.
     pub reinits: Vec<Equation>,
+    /// The message of its `terminate(..)`, which ends the simulation at its event.
+    pub terminate: Option<SharedText>,
 }
 
 /// A condition on tunable parameters that must hold (see [`System::assert`]).
@@ -206,6 +210,7 @@ impl System {
             checks: None,
             whens: Vec::new(),
             reinits: Vec::new(),
+            terminates: Vec::new(),
             samples: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
@@ -349,14 +354,24 @@ impl System {
     pub fn when(&mut self, condition: impl Into<Expr>, body: impl FnOnce(&mut System)) {
         let condition = self.own(condition.into());
         let (n_equations, n_reinits) = (self.equations.len(), self.reinits.len());
+        let n_terminates = self.terminates.len();
         body(self);
         let equations = self.equations.split_off(n_equations);
         let reinits = self.reinits.split_off(n_reinits);
+        let terminate = self.terminates.split_off(n_terminates).into_iter().next();
         self.whens.push(WhenClause {
             condition,
             equations,
             reinits,
+            terminate,
         });
+    }
+
+    /// `terminate(message)` inside a [`when`](Self::when) clause: the simulation ends
+    /// successfully at its event, with `message` as the reason (Modelica's
+    /// `terminate`; [`Solution::terminated`](crate::solve::Solution::terminated)).
+    pub fn terminate(&mut self, message: impl Into<SharedText>) {
+        self.terminates.push(message.into());
     }
 
     /// Modelica's `sample(start, interval)`, the condition of a [`when`](Self::when)

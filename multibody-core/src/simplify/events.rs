@@ -77,6 +77,9 @@ pub struct EventWhen {
     pub assignments: Vec<(usize, Id)>,
     /// Its `reinit`s.
     pub reinits: Vec<Reinit>,
+    /// The message of its `terminate(..)` (with the component's path), which ends the
+    /// simulation at its event.
+    pub terminate: Option<String>,
 }
 
 /// `reinit(x, value)` of a `when` clause.
@@ -418,6 +421,7 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> (Vec<EventWhen>, Vec<(
             condition,
             assignments,
             reinits,
+            terminate: w.terminate.clone(),
         });
     }
     flat.whens = whens;

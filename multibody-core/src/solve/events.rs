@@ -224,7 +224,7 @@ pub(super) fn settle(
     roots: &[i32],
     options: &SolverOptions,
     (history, specialized): (&mut History, &mut Option<(Vec<f64>, CompiledDae)>),
-) -> Result<(Vec<f64>, Vec<f64>), Error> {
+) -> Result<Settled, Error> {
     let cache = specialized_for(sys, params, options, specialized.take());
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
@@ -243,8 +243,9 @@ fn settle_with(
     roots: &[i32],
     options: &SolverOptions,
     history: &mut History,
-) -> Result<(Vec<f64>, Vec<f64>), Error> {
+) -> Result<Settled, Error> {
     let model = &sys.model.events;
+    let mut terminated = None;
     let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
     // Before the event: pre(x), and whether each when condition held.
     let mut held = vec![false; model.whens.len()];
@@ -285,7 +286,7 @@ fn settle_with(
             })
         })?;
         if !observer.load(t, &y, &yp, params) {
-            return Ok((y, yp));
+            return Ok(Settled { y, yp, terminated });
         }
         changing.clear();
         for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
@@ -315,13 +316,26 @@ fn settle_with(
                     y[r.unknown] = evaluate(sys, r.value, &base, params, t)
                         .ok_or_else(|| not_evaluable(sys, t, &w.text, "a reinit value"))?;
                 }
+                if let Some(m) = &w.terminate {
+                    terminated.get_or_insert_with(|| m.clone());
+                }
                 changing.push(format!("when {}", w.text));
             }
             *h = now;
         }
         if changing.is_empty() {
-            return Ok((y, yp));
+            return Ok(Settled { y, yp, terminated });
         }
     }
     Err(unsettled(sys, t, &changing))
+}
+
+/// The right limit at a settled event.
+pub(super) struct Settled {
+    /// The unknowns.
+    pub y: Vec<f64>,
+    /// Their derivatives.
+    pub yp: Vec<f64>,
+    /// The message of a `terminate(..)` that ends the simulation here.
+    pub terminated: Option<String>,
 }

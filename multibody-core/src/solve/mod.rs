@@ -23,4 +23,4 @@ pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
 pub use options::{LinearSolver, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
-pub use solution::{Event, Segment, Solution};
+pub use solution::{Event, Segment, Solution, Termination};

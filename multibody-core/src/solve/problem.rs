@@ -16,7 +16,7 @@ use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
 use super::options::{LinearSolver, SolverOptions};
-use super::solution::{Segment, Solution, SolutionParts};
+use super::solution::{Segment, Solution, SolutionParts, Termination};
 
 /// What the initialization did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -699,6 +699,7 @@ impl<'a> DaeProblem<'a> {
             points_left: options.max_points,
             events: super::events::History::new(sys, self.tspan),
             specialized: None,
+            terminated: None,
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -715,7 +716,7 @@ impl<'a> DaeProblem<'a> {
                 params: params.clone(),
             });
             run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
-            let (y, yp) = super::events::settle(
+            let settled = super::events::settle(
                 sys,
                 self.tspan,
                 &mut params,
@@ -725,9 +726,17 @@ impl<'a> DaeProblem<'a> {
                 (&mut run.events, &mut run.specialized),
             )
             .map_err(Degraded::Error)?;
-            (u0, up0) = (y, yp);
+            (u0, up0) = (settled.y, settled.yp);
+            if let Some(message) = settled.terminated {
+                run.segments.push(Segment {
+                    first: run.t.len(),
+                    params: params.clone(),
+                });
+                run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
+                run.terminated = Some(Termination { t: t0, message });
+            }
         }
-        loop {
+        while run.terminated.is_none() {
             let segment = Segment {
                 first: run.t.len(),
                 params: params.clone(),
@@ -785,7 +794,7 @@ impl<'a> DaeProblem<'a> {
                 SegmentEnd::Event { t, y, yp, roots } => {
                     // The event's point ends this segment (the left limit) and, once
                     // the relations have settled, starts the next (the right limit).
-                    let (y, yp) = super::events::settle(
+                    let settled = super::events::settle(
                         sys,
                         self.tspan,
                         &mut params,
@@ -795,7 +804,17 @@ impl<'a> DaeProblem<'a> {
                         (&mut run.events, &mut run.specialized),
                     )
                     .map_err(Degraded::Error)?;
-                    (t0, u0, up0) = (t, y, yp);
+                    (t0, u0, up0) = (t, settled.y, settled.yp);
+                    if let Some(message) = settled.terminated {
+                        // terminate(..): the right limit is the last point.
+                        run.segments.push(Segment {
+                            first: run.t.len(),
+                            params: params.clone(),
+                        });
+                        run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
+                        run.terminated = Some(Termination { t: t0, message });
+                        break;
+                    }
                 }
                 SegmentEnd::Switch { t, y, yp, decision } => {
                     // The point where the selection changes ends this segment (it has
@@ -881,6 +900,7 @@ impl<'a> DaeProblem<'a> {
             stats: run.stats,
             init: self.report.clone(),
             events: run.events.events,
+            terminated: run.terminated,
         }))
     }
 
@@ -1193,6 +1213,8 @@ struct Run {
     /// The compiled functions specialized to the parameters that events do not change,
     /// with those parameters' values (kept while they do not change).
     specialized: Option<(Vec<f64>, CompiledDae)>,
+    /// Where and why a `terminate(..)` ended the run.
+    terminated: Option<Termination>,
 }
 
 impl Run {

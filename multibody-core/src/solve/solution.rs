@@ -42,6 +42,16 @@ pub struct Solution {
     stats: IdaStats,
     init: InitReport,
     events: Vec<Event>,
+    terminated: Option<Termination>,
+}
+
+/// Where and why a `terminate(..)` of the model ended the simulation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Termination {
+    /// When \[s\].
+    pub t: f64,
+    /// The message, with the path of the component that terminated.
+    pub message: String,
 }
 
 /// An event of a solution: a relation of the model that changed its value. The
@@ -104,6 +114,8 @@ pub(crate) struct SolutionParts {
     pub init: InitReport,
     /// The events, in time order.
     pub events: Vec<Event>,
+    /// Where a `terminate(..)` ended the run.
+    pub terminated: Option<Termination>,
 }
 
 impl Solution {
@@ -126,7 +138,14 @@ impl Solution {
             stats: p.stats,
             init: p.init,
             events: p.events,
+            terminated: p.terminated,
         }
+    }
+
+    /// Where and why a `terminate(..)` of the model ended the run before the final
+    /// time (the solution then ends there); `None` when it ran to the end.
+    pub fn terminated(&self) -> Option<&Termination> {
+        self.terminated.as_ref()
     }
 
     /// The events of the run (relations that changed their value), in time order.
