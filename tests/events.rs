@@ -8,8 +8,8 @@ use std::f64::consts::PI;
 
 use multibody::Error;
 use multibody::blocks::{
-    Constant, Feedback, Gain, Pulse, Ramp, Sampler, SawTooth, Step, Trapezoid, UnitDelay,
-    ZeroOrderHold,
+    Constant, Feedback, Gain, Pulse, Ramp, Sampler, SawTooth, Step, TimeTable, Trapezoid,
+    UnitDelay, ZeroOrderHold,
 };
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Fixed, Inertia, SpeedSensor, Torque};
@@ -579,4 +579,44 @@ fn terminate_ends_the_simulation_at_its_event() {
     assert_eq!(*sol.t().last().unwrap(), end.t);
     assert_eq!(sol.final_value("ball.bounces").unwrap(), 3.0);
     assert!(sol.final_value("ball.v").unwrap() > 0.0);
+}
+
+#[test]
+fn time_table_interpolates_jumps_and_extrapolates_as_msl_documents() {
+    // MSL's own example: table [0, 0; 1, 0; 1, 1; 2, 4; 3, 9; 4, 16] gives 0 before
+    // and 1 after the jump at t = 1, 2.5 at 1.5, 4 at 2 and 23 at 5 (extrapolated).
+    let model = system! {
+        name: "table";
+        table = TimeTable { table: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [2.0, 4.0], [3.0, 9.0], [4.0, 16.0]] };
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 5.0))
+        .unwrap()
+        .solve(&SolverOptions {
+            output_times: Some(vec![0.5, 1.5, 2.0, 2.5, 5.0]),
+            ..SolverOptions::default()
+        })
+        .unwrap();
+    for (t, exact) in [(0.5, 0.0), (1.5, 2.5), (2.0, 4.0), (2.5, 6.5), (5.0, 23.0)] {
+        let got = sol.at("table.y", t).unwrap();
+        assert!((got - exact).abs() < 1e-12, "y({t}) = {got}, exact {exact}");
+    }
+    // The jump: both limits at t = 1.
+    let y = sol.get("table.y").unwrap();
+    let at: Vec<usize> = (0..sol.t().len()).filter(|&k| sol.t()[k] == 1.0).collect();
+    assert!(at.len() >= 2, "{:?}", sol.t());
+    assert_eq!((y[at[0]], y[*at.last().unwrap()]), (0.0, 1.0));
+}
+
+#[test]
+fn a_time_table_that_does_not_start_at_zero_is_rejected_by_name() {
+    let model = system! {
+        name: "bad_table";
+        source = TimeTable { table: vec![[1.0, 0.0], [2.0, 1.0]] };
+    };
+    let err = structural_simplify(&model).unwrap_err().to_string();
+    assert!(
+        err.contains("source") && err.contains("the first time of the table must be 0, not 1"),
+        "{err}"
+    );
 }

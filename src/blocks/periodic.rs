@@ -139,3 +139,67 @@ component! {
         }
     }
 }
+
+/// The piecewise-linear curve through the rows `(t, y)` of `table` at `tau` (MSL
+/// `TimeTable`'s interpolation): linear between neighbouring rows, a jump where two rows
+/// share their time, extrapolated through the first or last two rows. Each row's time
+/// is a relation on `tau`, an event.
+fn interpolation(table: &[[f64; 2]], tau: Expr) -> Expr {
+    let n = table.len();
+    if n == 1 {
+        return Expr::from(table[0][1]);
+    }
+    let line = |i: usize| {
+        let ([t0, y0], [t1, y1]) = (table[i - 1], table[i]);
+        let dt = t1 - t0;
+        if dt <= 100.0 * f64::EPSILON * t1.abs() {
+            Expr::from(y1)
+        } else {
+            (tau - t0) * ((y1 - y0) / dt) + y0
+        }
+    };
+    // From the last interval (which extrapolates) back to the first.
+    let mut curve = line(n - 1);
+    for i in (1..n - 1).rev() {
+        curve = if_else(lt(tau, table[i][0]), line(i), curve);
+    }
+    curve
+}
+
+component! {
+    /// A signal interpolated linearly in a table of `(time, value)` rows (MSL
+    /// `Blocks.Sources.TimeTable`): the first row at time 0, times increasing, a jump
+    /// where two rows share their time; extrapolated through the last two rows; `offset`
+    /// before `start_time`, and the table's times counted from `shift_time`. Every row's
+    /// time is a time event, so the integrator never steps across a corner.
+    #[type_name = "Blocks.TimeTable"]
+    pub struct TimeTable {
+        /// Rows `[time, value]` (time in s), at least one; default empty (an error).
+        structural table: Vec<[f64; 2]> = Vec::new();
+        /// Offset of the output, default 0.
+        parameter offset: f64 = 0.0;
+        /// Output `offset` before this time \[s\], default 0.
+        parameter start_time: f64 = 0.0;
+        /// Time the table's times are counted from \[s\], default 0.
+        parameter shift_time: f64 = 0.0;
+        /// Output.
+        connector y: RealOutput;
+        equation {
+            assert(!table.is_empty(), "the table needs at least one row");
+            assert(
+                table.first().is_none_or(|r| r[0] == 0.0) || table.len() == 1,
+                format!("the first time of the table must be 0, not {}", table.first().map_or(0.0, |r| r[0]))
+            );
+            assert(
+                table.windows(2).all(|w| w[1][0] >= w[0][0]) && table.iter().flatten().all(|x| x.is_finite()),
+                "the times of the table must be finite and increasing"
+            );
+            if !table.is_empty() {
+                let curve = interpolation(&table, time - shift_time);
+                y = offset + if_else(lt(time, start_time), 0.0, curve);
+            } else {
+                y = offset;
+            }
+        }
+    }
+}

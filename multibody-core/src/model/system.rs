@@ -592,6 +592,12 @@ impl<const N: usize> StructuralValue for [f64; N] {
     }
 }
 
+impl<const N: usize> StructuralValue for Vec<[f64; N]> {
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(self.iter().flatten().copied().collect())
+    }
+}
+
 impl<T: StructuralValue> StructuralValue for Option<T> {
     fn structural_values(&self) -> Option<Vec<f64>> {
         self.as_ref().and_then(StructuralValue::structural_values)
