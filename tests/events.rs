@@ -8,8 +8,8 @@ use std::f64::consts::PI;
 
 use multibody::Error;
 use multibody::blocks::{
-    Constant, Feedback, Gain, Pulse, Ramp, Sampler, SawTooth, Step, TimeTable, Trapezoid,
-    UnitDelay, ZeroOrderHold,
+    Constant, Feedback, Gain, Hysteresis, Pulse, Ramp, Sampler, SawTooth, Sine, Step, TimeTable,
+    Trapezoid, UnitDelay, ZeroOrderHold,
 };
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Fixed, Inertia, SpeedSensor, Torque};
@@ -619,4 +619,44 @@ fn a_time_table_that_does_not_start_at_zero_is_rejected_by_name() {
         err.contains("source") && err.contains("the first time of the table must be 0, not 1"),
         "{err}"
     );
+}
+
+#[test]
+fn hysteresis_switches_at_its_thresholds() {
+    // u = sin(2 pi t): on where u rises through 0.5 (t = 1/12 + k), off where it falls
+    // through -0.5 (t = 7/12 + k).
+    let model = system! {
+        name: "hysteresis";
+        sine = Sine { amplitude: 1.0, f: 1.0 };
+        switch = Hysteresis { u_low: -0.5, u_high: 0.5 };
+        connect(sine.y, switch.u);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    let on = |t: f64| {
+        let s = t % 1.0;
+        if (1.0 / 12.0..7.0 / 12.0).contains(&s) {
+            1.0
+        } else {
+            0.0
+        }
+    };
+    for t in [0.05, 0.1, 0.5, 0.6, 0.9, 1.05, 1.1, 1.55, 1.6, 1.95] {
+        let got = sol.at("switch.y", t).unwrap();
+        assert_eq!(got, on(t), "y({t})");
+    }
+    let switches: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|e| e.value && e.condition.contains("switch"))
+        .map(|e| e.t)
+        .collect();
+    let exact = [1.0 / 12.0, 7.0 / 12.0, 13.0 / 12.0, 19.0 / 12.0];
+    assert_eq!(switches.len(), 4, "{:?}", sol.events());
+    for (t, e) in switches.iter().zip(exact) {
+        assert!((t - e).abs() < 1e-6, "switch at {t}, exact {e}");
+    }
 }

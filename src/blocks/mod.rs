@@ -1,10 +1,11 @@
 //! Signal blocks (MSL `Modelica.Blocks`): sources, math, continuous (linear and
-//! PID) and discrete (sampled) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
+//! PID), discrete (sampled) and logical (switching) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
 //! exactly one `RealOutput`.
 
 mod continuous;
 mod discrete;
 mod interfaces;
+mod logical;
 mod math;
 mod periodic;
 mod sources;
@@ -12,6 +13,7 @@ mod sources;
 pub use continuous::*;
 pub use discrete::*;
 pub use interfaces::*;
+pub use logical::*;
 pub use math::*;
 pub use periodic::*;
 pub use sources::*;
