@@ -111,6 +111,9 @@ pub struct EventRelation {
     /// and true from an event at the initial time when the first instant is not
     /// later.
     pub sample: bool,
+    /// For a relation of time, `time - c` with `c` an expression of parameters (a time
+    /// event: the integration stops at `c` exactly, without root finding): `c`.
+    pub time_event: Option<Id>,
 }
 
 impl EventRelation {
@@ -219,19 +222,46 @@ fn add_parameter(
 /// and `pre` values of its `when` clauses into parameters (see the module
 /// documentation); returns what the solver needs of them.
 pub(crate) fn augment(flat: &mut FlatSystem) -> Events {
-    let relations = relations(flat);
-    let whens = whens(flat, &relations);
+    let mut relations = relations(flat);
+    let (whens, pre, discrete) = whens(flat, &relations);
+    time_events(flat, &mut relations, &discrete);
     Events {
         relations: relations.relations,
-        whens: whens.0,
-        pre: whens.1,
+        whens,
+        pre,
     }
 }
 
-/// The relations of [`augment`], with the map from each relation to its parameter.
+/// Marks the relations of time alone, `time - c` with `c` of parameters and discrete
+/// variables (held by the parameters `discrete`), as time events.
+fn time_events(flat: &mut FlatSystem, relations: &mut Relations, discrete: &[(u32, usize)]) {
+    let mut map = NodeMap::default();
+    for &(v, p) in discrete {
+        let (x, held) = (flat.arena.var(v), flat.arena.param(p as u32));
+        map.insert(x, held);
+    }
+    let mut memo = NodeMap::default();
+    let time = flat.arena.time();
+    for (r, &g) in relations.relations.iter_mut().zip(&relations.crossings) {
+        let g = flat.arena.substitute_memo(g, &map, &mut memo);
+        let c = flat.arena.sub(time, g);
+        let of_parameters = flat
+            .arena
+            .leaves(c)
+            .iter()
+            .all(|&l| matches!(flat.arena.node(l), Node::Param(_)));
+        if of_parameters {
+            r.time_event = Some(c);
+        }
+    }
+}
+
+/// The relations of [`augment`], with the map from each relation to its parameter
+/// and each one's crossing function `lhs - rhs`.
 struct Relations {
     relations: Vec<EventRelation>,
     map: NodeMap,
+    crossings: Vec<Id>,
 }
 
 fn relations(flat: &mut FlatSystem) -> Relations {
@@ -241,10 +271,12 @@ fn relations(flat: &mut FlatSystem) -> Relations {
         return Relations {
             relations: Vec::new(),
             map,
+            crossings: Vec::new(),
         };
     }
     let base = free_name(flat, "events");
     let mut out = Vec::with_capacity(relations.len());
+    let mut crossings = Vec::with_capacity(relations.len());
     for (k, &c) in relations.iter().enumerate() {
         let Node::Cmp(op, a, b) = *flat.arena.node(c) else {
             unreachable!("a relation")
@@ -265,6 +297,7 @@ fn relations(flat: &mut FlatSystem) -> Relations {
         let p = flat.arena.param(parameter as u32);
         map.insert(c, p);
         let g = flat.arena.sub(a, b);
+        crossings.push(g);
         let v = flat.arena.var(crossing as u32);
         let residual = flat.arena.sub(v, g);
         flat.equations.push(FlatEquation {
@@ -280,6 +313,7 @@ fn relations(flat: &mut FlatSystem) -> Relations {
             crossing,
             text,
             sample: flat.samples.contains(&c),
+            time_event: None,
         });
     }
     // The relations held: every equation sees the relation parameters (the crossing
@@ -294,12 +328,16 @@ fn relations(flat: &mut FlatSystem) -> Relations {
     Relations {
         relations: out,
         map,
+        crossings,
     }
 }
 
-/// The `when` clauses of [`augment`] and its `pre` parameters; `pre(x)` in the
-/// equations becomes `x`.
-fn whens(flat: &mut FlatSystem, relations: &Relations) -> (Vec<EventWhen>, Vec<(usize, usize)>) {
+/// The clauses, the `pre` parameters and the discrete variables with their parameters.
+type Whens = (Vec<EventWhen>, Vec<(usize, usize)>, Vec<(u32, usize)>);
+
+/// The `when` clauses of [`augment`], its `pre` parameters and its discrete variables;
+/// `pre(x)` in the equations becomes `x`.
+fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
     let in_equations = if flat.arena.has_pre() {
         find_pre(
             flat,
@@ -329,7 +367,7 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> (Vec<EventWhen>, Vec<(
         }
     }
     if flat.whens.is_empty() {
-        return (Vec::new(), Vec::new());
+        return (Vec::new(), Vec::new(), Vec::new());
     }
     let base = free_name(flat, "events");
     // The discrete variables, each held by a parameter.
@@ -425,5 +463,5 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> (Vec<EventWhen>, Vec<(
         });
     }
     flat.whens = whens;
-    (out, pre)
+    (out, pre, discrete)
 }

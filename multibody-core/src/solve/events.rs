@@ -104,6 +104,55 @@ pub(super) fn initial_samples(
     roots.contains(&1).then_some(roots)
 }
 
+/// The instant of the time event `c` (an expression of parameters) at `params`.
+fn instant(sys: &SimplifiedSystem, c: Id, params: &[f64]) -> Option<f64> {
+    sys.model.arena.eval(c, &|n| match *n {
+        Node::Param(j) => params.get(j as usize).copied(),
+        _ => None,
+    })
+}
+
+/// Two instants closer than this (relative to the time) are one.
+fn same_instant(t: f64) -> f64 {
+    1e3 * f64::EPSILON * t.abs().max(1.0)
+}
+
+/// The next time event after `t0` and before `t_end` at `params`: where the integration
+/// stops exactly, without root finding.
+pub(super) fn next_time_event(
+    sys: &SimplifiedSystem,
+    params: &[f64],
+    t0: f64,
+    t_end: f64,
+) -> Option<f64> {
+    let tol = same_instant(t0);
+    sys.model
+        .events
+        .relations
+        .iter()
+        .filter_map(|r| instant(sys, r.time_event?, params))
+        .filter(|&c| c > t0 + tol && c < t_end)
+        .min_by(f64::total_cmp)
+}
+
+/// The crossing functions of the time event at `t`: rising for the relations of time
+/// whose instant it is.
+pub(super) fn time_event_roots(sys: &SimplifiedSystem, params: &[f64], t: f64) -> Vec<i32> {
+    let tol = same_instant(t);
+    sys.model
+        .events
+        .relations
+        .iter()
+        .map(|r| {
+            let at = r
+                .time_event
+                .and_then(|c| instant(sys, c, params))
+                .is_some_and(|c| (c - t).abs() <= tol);
+            i32::from(at)
+        })
+        .collect()
+}
+
 /// The value of a `when` clause's expression `e` at a point: the flat variables'
 /// values `base` (the observed function's first outputs), the parameters and time.
 fn evaluate(sys: &SimplifiedSystem, e: Id, base: &[f64], params: &[f64], t: f64) -> Option<f64> {

@@ -741,7 +741,10 @@ impl<'a> DaeProblem<'a> {
                 first: run.t.len(),
                 params: params.clone(),
             };
-            let t_end = bridge_end.unwrap_or(self.tspan.1);
+            let time_event = super::events::next_time_event(sys, &params, t0, self.tspan.1);
+            let t_end = bridge_end
+                .unwrap_or(self.tspan.1)
+                .min(time_event.unwrap_or(f64::INFINITY));
             let mut times: Option<Vec<f64>> = output_times.map(|ts| {
                 ts.iter()
                     .copied()
@@ -779,6 +782,19 @@ impl<'a> DaeProblem<'a> {
                 )
                 .map_err(Degraded::Error)?;
             run.segments.push(segment);
+            // A segment that reaches the next time event ends at that event.
+            let end = match end {
+                SegmentEnd::Done if time_event == Some(t_end) => {
+                    let k = run.t.len() - 1;
+                    SegmentEnd::Event {
+                        t: run.t[k],
+                        y: run.u[k * n..(k + 1) * n].to_vec(),
+                        yp: run.up[k * n..(k + 1) * n].to_vec(),
+                        roots: super::events::time_event_roots(sys, &params, run.t[k]),
+                    }
+                }
+                other => other,
+            };
             match end {
                 SegmentEnd::Done if bridge_end.is_some() && t_end < self.tspan.1 => {
                     // Across the singular point: on with the asked tolerances from the
@@ -1111,7 +1127,7 @@ impl<'a> DaeProblem<'a> {
                 t,
                 y,
                 yp,
-                roots: integrated.roots,
+                roots: f.relation_roots(&integrated.roots, sys.model.events.relations.len()),
             },
             Some((t, y, yp)) => SegmentEnd::Switch {
                 t,
@@ -1334,6 +1350,8 @@ struct Crossings<'c> {
     out: Vec<f64>,
     /// The observed output of each crossing variable.
     outputs: Vec<usize>,
+    /// The relation of each.
+    relations: Vec<usize>,
 }
 
 /// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
@@ -1379,17 +1397,35 @@ impl<'c> CompiledFunctions<'c> {
     /// `c`'s observed function; the crossing variable `k` is its output `k`'s flat
     /// variable).
     pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem) -> Self {
-        let events = &sys.model.events.relations;
-        if !events.is_empty() {
+        // Time events stop the integration at their instants; the others are found.
+        let found: Vec<usize> = (sys.model.events.relations.iter().enumerate())
+            .filter(|(_, r)| r.time_event.is_none())
+            .map(|(k, _)| k)
+            .collect();
+        if !found.is_empty() {
             let observed = &*self.c.observed;
+            let relations = &sys.model.events.relations;
             self.crossings = Some(Crossings {
                 observed,
                 ws: observed.workspace(),
                 out: vec![0.0; observed.n_outputs()],
-                outputs: events.iter().map(|e| e.crossing).collect(),
+                outputs: found.iter().map(|&k| relations[k].crossing).collect(),
+                relations: found,
             });
         }
         self
+    }
+
+    /// IDA's root information `roots` (one per crossing function) per relation of
+    /// the system (`n`; 0 for the time events).
+    fn relation_roots(&self, roots: &[i32], n: usize) -> Vec<i32> {
+        let mut out = vec![0; n];
+        if let Some(c) = &self.crossings {
+            for (&k, &r) in c.relations.iter().zip(roots) {
+                out[k] = r;
+            }
+        }
+        out
     }
 
     fn load(&mut self, t: f64, y: &[f64], yp: &[f64]) {
