@@ -661,3 +661,33 @@ fn hysteresis_switches_at_its_thresholds() {
         assert!((t - e).abs() < 1e-6, "switch at {t}, exact {e}");
     }
 }
+
+component! {
+    /// `reinit` of a variable that is no state.
+    pub struct ReinitAlgebraic {
+        /// A state.
+        variable x(start = 1.0, fixed = true): Real;
+        /// Follows from `x`.
+        variable y: Real;
+        equation {
+            der(x) = -1.0;
+            y = 2.0 * x;
+            when lt(x, 0.0) {
+                reinit(y, 1.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn reinit_of_a_variable_that_is_no_state_is_an_error_naming_it() {
+    let mut model = System::new("bad_reinit");
+    model.add("c", &ReinitAlgebraic::default());
+    let err = structural_simplify(&model).unwrap_err().to_string();
+    assert!(
+        err.contains("reinit(c.y, ..)")
+            && err.contains("`c.y` is not a state")
+            && err.contains("c.x < 0"),
+        "{err}"
+    );
+}
