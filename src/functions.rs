@@ -138,6 +138,20 @@ pub fn pre(x: impl Into<Expr>) -> Expr {
     x.into().pre()
 }
 
+/// Modelica's `edge(b)` in a `when` condition: true at the event where `b` (1 or 0)
+/// becomes true, `b and not pre(b)`.
+pub fn edge(b: impl Into<Expr>) -> Expr {
+    let b = b.into();
+    b * (1.0 - b.pre())
+}
+
+/// Modelica's `change(v)` in a `when` condition: true at the event where `v` changes,
+/// `v <> pre(v)`.
+pub fn change(v: impl Into<Expr>) -> Expr {
+    let v = v.into();
+    (v - v.pre()).abs().gt(0.0).no_event()
+}
+
 /// Modelica's `smooth(order, e)`: `e` is `order` times continuously differentiable
 /// (`order` >= 0), so its relations need no events; here the same as [`no_event`].
 pub fn smooth(order: u32, e: impl Into<Expr>) -> Expr {

@@ -691,3 +691,45 @@ fn reinit_of_a_variable_that_is_no_state_is_an_error_naming_it() {
         "{err}"
     );
 }
+
+component! {
+    /// Counts the rising edges of a hysteresis's output and its changes.
+    pub struct EdgeCounter {
+        /// The hysteresis output (1 or 0).
+        connector u: multibody::blocks::RealInput;
+        /// Rising edges so far.
+        variable rises(start = 0.0): Real;
+        /// Changes so far.
+        variable changes(start = 0.0): Real;
+        equation {
+            when edge(u) {
+                rises = pre(rises) + 1.0;
+            }
+            when change(u) {
+                changes = pre(changes) + 1.0;
+            }
+        }
+    }
+}
+
+#[test]
+fn edge_and_change_count_the_switches_of_a_signal() {
+    // The hysteresis of sin(2 pi t) switches on at 1/12 + k and off at 7/12 + k: in
+    // 2.5 s three rises and five changes.
+    let model = system! {
+        name: "edges";
+        sine = Sine { amplitude: 1.0, f: 1.0 };
+        switch = Hysteresis { u_low: -0.5, u_high: 0.5 };
+        counter = EdgeCounter::default();
+        connect(sine.y, switch.u);
+        connect(switch.y, counter.u);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.5))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    assert_eq!(sol.final_value("counter.rises").unwrap(), 3.0);
+    assert_eq!(sol.final_value("counter.changes").unwrap(), 5.0);
+    assert_eq!(sol.at("counter.rises", 1.0).unwrap(), 1.0);
+}
