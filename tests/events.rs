@@ -733,3 +733,54 @@ fn edge_and_change_count_the_switches_of_a_signal() {
     assert_eq!(sol.final_value("counter.changes").unwrap(), 5.0);
     assert_eq!(sol.at("counter.rises", 1.0).unwrap(), 1.0);
 }
+
+component! {
+    /// Two conditions that become true at the same instant, chained or not.
+    pub struct Chained {
+        /// The second condition's instant \[s\].
+        parameter t2: f64 = 1.0;
+        /// Whether the second clause is an `elsewhen` of the first.
+        structural chained: bool = true;
+        /// Which clause set it last.
+        variable a(start = 0.0): Real;
+        equation {
+            if chained {
+                when ge(time, 1.0) {
+                    a = 1.0;
+                } elsewhen ge(time, t2) {
+                    a = 2.0;
+                }
+            } else {
+                when ge(time, 1.0) {
+                    a = 1.0;
+                }
+                when ge(time, t2) {
+                    a = 2.0;
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn elsewhen_is_skipped_where_its_when_fires() {
+    let run = |chained: bool, t2: f64| {
+        let mut model = System::new("chain");
+        model.add("c", &Chained { chained, t2 });
+        let ssys = structural_simplify(&model).unwrap();
+        let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+            .unwrap()
+            .solve(&SolverOptions::default())
+            .unwrap();
+        (
+            sol.at("c.a", 0.75).unwrap(),
+            sol.final_value("c.a").unwrap(),
+        )
+    };
+    // Both at t = 1: the when wins over its elsewhen; two plain whens both act (the
+    // second last).
+    assert_eq!(run(true, 1.0), (0.0, 1.0));
+    assert_eq!(run(false, 1.0), (0.0, 2.0));
+    // The elsewhen alone at t = 0.5, the when at 1.
+    assert_eq!(run(true, 0.5), (2.0, 1.0));
+}

@@ -196,6 +196,7 @@ impl Translator {
         i: &syn::ExprIf,
         c: &syn::ExprCall,
         initial: bool,
+        elsewhen: bool,
     ) -> syn::Result<TokenStream> {
         if initial {
             return Err(syn::Error::new(
@@ -212,9 +213,14 @@ impl Translator {
         let body = self.block(&i.then_branch, false);
         self.in_when = false;
         let body = body?;
+        let method = if elsewhen {
+            quote!(elsewhen)
+        } else {
+            quote!(when)
+        };
         Ok(quote_spanned!(c.span()=> {
             let __condition = #condition;
-            __s.when(__condition, |__s| #body);
+            __s.#method(__condition, |__s| #body);
         }))
     }
 
@@ -360,9 +366,9 @@ impl Translator {
             }
             Expr::If(i) => {
                 if let Some((name, c)) = call_name(&i.cond)
-                    && name == "__when"
+                    && (name == "__when" || name == "__elsewhen")
                 {
-                    return self.when_clause(i, c, initial);
+                    return self.when_clause(i, c, initial, name == "__elsewhen");
                 }
                 if let Some((name, c)) = call_name(&i.cond)
                     && (name == "rooted" || name == "is_root")

@@ -8,29 +8,75 @@ use syn::{
 
 use crate::ast::*;
 
-/// The statements of an equation section: Rust statements, and Modelica's
-/// `when CONDITION { ... }`, kept as `if __when(CONDITION) { ... }` for the translator.
-fn equation_statements(input: ParseStream<'_>) -> syn::Result<Vec<syn::Stmt>> {
-    let mut out = Vec::new();
-    while !input.is_empty() {
-        if input.peek(Ident) && !input.peek2(Token![=]) && !input.peek2(Token![.]) {
-            let fork = input.fork();
-            let word: Ident = fork.parse()?;
-            if word == "when" {
-                let keyword: Ident = input.parse()?;
-                let condition = Expr::parse_without_eager_brace(input)?;
-                let body: Block = input.parse()?;
-                out.push(syn::parse_quote_spanned!(keyword.span()=> if __when(#condition) #body));
-                continue;
+/// Modelica's `when CONDITION { ... }` and `elsewhen CONDITION { ... }`, wherever they
+/// stand in an equation section (inside structural `if`s too), rewritten into the Rust
+/// the section is parsed as: `if __when(CONDITION) { ... }` and
+/// `if __elsewhen(CONDITION) { ... }`, which the translator turns into clauses.
+fn rewrite_when(tokens: proc_macro2::TokenStream) -> proc_macro2::TokenStream {
+    use proc_macro2::{Delimiter, Group, Ident as PmIdent, TokenTree};
+    let tokens: Vec<TokenTree> = tokens.into_iter().collect();
+    let mut out = Vec::with_capacity(tokens.len());
+    let mut i = 0;
+    while i < tokens.len() {
+        match &tokens[i] {
+            TokenTree::Ident(word) if word == "when" || word == "elsewhen" => {
+                // A clause: the condition runs to the body in braces (a variable of that
+                // name, `when = ...` or `when.x`, is left alone).
+                let body = (i + 1..tokens.len()).find(|&j| {
+                    matches!(&tokens[j], TokenTree::Group(g) if g.delimiter() == Delimiter::Brace)
+                });
+                let starts_condition = match tokens.get(i + 1) {
+                    Some(TokenTree::Ident(_) | TokenTree::Group(_) | TokenTree::Literal(_)) => true,
+                    Some(TokenTree::Punct(p)) => matches!(p.as_char(), '-' | '!'),
+                    None => false,
+                };
+                let is_clause = starts_condition && body.is_some_and(|j| j > i + 1);
+                let Some(j) = body.filter(|_| is_clause) else {
+                    out.push(tokens[i].clone());
+                    i += 1;
+                    continue;
+                };
+                let marker = if word == "when" {
+                    "__when"
+                } else {
+                    "__elsewhen"
+                };
+                let condition: proc_macro2::TokenStream =
+                    tokens[i + 1..j].iter().cloned().map(rewrite_tree).collect();
+                out.push(TokenTree::Ident(PmIdent::new("if", word.span())));
+                out.push(TokenTree::Ident(PmIdent::new(marker, word.span())));
+                let mut args = Group::new(Delimiter::Parenthesis, condition);
+                args.set_span(word.span());
+                out.push(TokenTree::Group(args));
+                out.push(rewrite_tree(tokens[j].clone()));
+                i = j + 1;
+            }
+            t => {
+                out.push(rewrite_tree(t.clone()));
+                i += 1;
             }
         }
-        if input.peek(Token![;]) {
-            input.parse::<Token![;]>()?;
-            continue;
-        }
-        out.push(input.parse::<syn::Stmt>()?);
     }
-    Ok(out)
+    out.into_iter().collect()
+}
+
+/// [`rewrite_when`] inside a token tree's groups.
+fn rewrite_tree(t: proc_macro2::TokenTree) -> proc_macro2::TokenTree {
+    match t {
+        proc_macro2::TokenTree::Group(g) => {
+            let mut inner = proc_macro2::Group::new(g.delimiter(), rewrite_when(g.stream()));
+            inner.set_span(g.span());
+            proc_macro2::TokenTree::Group(inner)
+        }
+        other => other,
+    }
+}
+
+/// The statements of an equation section (see [`rewrite_when`]).
+fn equation_statements(input: ParseStream<'_>) -> syn::Result<Vec<syn::Stmt>> {
+    use syn::parse::Parser;
+    let tokens: proc_macro2::TokenStream = input.parse()?;
+    Block::parse_within.parse2(rewrite_when(tokens))
 }
 
 fn modifiers(input: ParseStream<'_>) -> syn::Result<Vec<Modifier>> {

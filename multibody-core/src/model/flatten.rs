@@ -167,6 +167,8 @@ pub struct FlatWhen {
     pub reinits: Vec<(u32, Id)>,
     /// The message of its `terminate(..)`.
     pub terminate: Option<String>,
+    /// Whether it is an `elsewhen` of the clause before it.
+    pub elsewhen: bool,
 }
 
 /// Names of a flat system's leaves.
@@ -718,6 +720,7 @@ impl<'s> Flattener<'_, 's> {
                 assignments,
                 reinits,
                 terminate,
+                elsewhen: w.elsewhen,
             });
         }
     }

@@ -123,6 +123,9 @@ pub struct WhenClause {
     pub reinits: Vec<Equation>,
     /// The message of its `terminate(..)`, which ends the simulation at its event.
     pub terminate: Option<SharedText>,
+    /// Whether it is an `elsewhen` of the clause before it: skipped at an event where
+    /// a clause before it in the chain fires.
+    pub elsewhen: bool,
 }
 
 /// A condition on tunable parameters that must hold (see [`System::assert`]).
@@ -364,7 +367,21 @@ impl System {
             equations,
             reinits,
             terminate,
+            elsewhen: false,
         });
+    }
+
+    /// An `elsewhen` branch of the last [`when`](Self::when) clause of this component:
+    /// like a clause of its own, but skipped at an event where a branch before it
+    /// fires.
+    pub fn elsewhen(&mut self, condition: impl Into<Expr>, body: impl FnOnce(&mut System)) {
+        if self.whens.is_empty() {
+            self.invalid("elsewhen needs a when clause before it".to_string());
+        }
+        self.when(condition, body);
+        if let Some(w) = self.whens.last_mut() {
+            w.elsewhen = true;
+        }
     }
 
     /// `terminate(message)` inside a [`when`](Self::when) clause: the simulation ends

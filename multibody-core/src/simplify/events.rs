@@ -80,6 +80,9 @@ pub struct EventWhen {
     /// The message of its `terminate(..)` (with the component's path), which ends the
     /// simulation at its event.
     pub terminate: Option<String>,
+    /// Whether it is an `elsewhen` of the clause before it: skipped at an event where
+    /// a clause before it in its chain fires.
+    pub elsewhen: bool,
 }
 
 /// `reinit(x, value)` of a `when` clause.
@@ -460,6 +463,7 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
             assignments,
             reinits,
             terminate: w.terminate.clone(),
+            elsewhen: w.elsewhen,
         });
     }
     flat.whens = whens;

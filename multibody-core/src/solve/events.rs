@@ -350,11 +350,18 @@ fn settle_with(
                 changing.push(r.text.clone());
             }
         }
+        // Whether a clause of the current when/elsewhen chain fired this round.
+        let mut chain_fired = false;
         for (w, h) in model.whens.iter().zip(&mut held) {
             let now = evaluate(sys, w.condition, &observer.base, params, t)
                 .ok_or_else(|| not_evaluable(sys, t, &w.text, "the condition"))?
                 != 0.0;
-            if now && !*h {
+            if !w.elsewhen {
+                chain_fired = false;
+            }
+            let fires = now && !*h && !chain_fired;
+            chain_fired |= fires;
+            if fires {
                 // Every right-hand side at the point the round started from.
                 let base = observer.base.clone();
                 for &(p, e) in &w.assignments {
