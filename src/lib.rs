@@ -137,7 +137,9 @@
 //! A [`DaeProblem`] sets start values, parameter values and guesses (by handle or by
 //! name) over a time span; [`DaeProblem::solve`] initializes the model consistently
 //! and integrates it with the [`SolverOptions`] (tolerances, output times, step limits).
-//! Other parameter values need a new problem, not a new compilation.
+//! Other parameter values need a new problem, not a new compilation. Relations on
+//! variables or time are events: the integration stops where one changes and restarts
+//! (`when`, `reinit`, `sample` in [`component!`]); [`Solution::events`] lists them.
 //!
 //! ```
 //! # use multibody::prelude::*;
