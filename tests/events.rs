@@ -784,3 +784,36 @@ fn elsewhen_is_skipped_where_its_when_fires() {
     // The elsewhen alone at t = 0.5, the when at 1.
     assert_eq!(run(true, 0.5), (2.0, 1.0));
 }
+
+component! {
+    /// Keeps the value its state had at the start.
+    pub struct RemembersTheStart {
+        /// Decays from 3.
+        variable x(start = 3.0, fixed = true): Real;
+        /// `x` at the start.
+        variable x0(start = 0.0): Real;
+        /// Initial events so far.
+        variable count(start = 0.0): Real;
+        equation {
+            der(x) = -x;
+            when initial() {
+                x0 = x;
+                count = pre(count) + 1.0;
+            }
+        }
+    }
+}
+
+#[test]
+fn initial_fires_once_at_the_start() {
+    let mut model = System::new("start");
+    model.add("m", &RemembersTheStart::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    assert_eq!(sol.final_value("m.x0").unwrap(), 3.0);
+    assert_eq!(sol.final_value("m.count").unwrap(), 1.0);
+    assert!((sol.final_value("m.x").unwrap() - 3.0 * (-2.0f64).exp()).abs() < 1e-5);
+}

@@ -52,14 +52,21 @@ fn call_name(e: &Expr) -> Option<(String, &syn::ExprCall)> {
     }
 }
 
-/// `sample(start, interval)` in a `when` condition made the builder's
-/// `__s.sample(start, interval)` (it declares what it needs in the component).
+/// `sample(start, interval)` and `initial()` in a `when` condition made the builder's
+/// `__s.sample(start, interval)` and `__s.initial()` (they declare what they need in
+/// the component).
 fn with_samples(e: &mut Expr) {
     match e {
         Expr::Call(c) => {
             if call_name(&Expr::Call(c.clone())).is_some_and(|(n, _)| n == "sample") {
                 let args = &c.args;
                 *e = syn::parse_quote_spanned!(c.span()=> __s.sample(#args));
+                return;
+            }
+            if call_name(&Expr::Call(c.clone())).is_some_and(|(n, _)| n == "initial")
+                && c.args.is_empty()
+            {
+                *e = syn::parse_quote_spanned!(c.span()=> __s.initial());
                 return;
             }
             c.args.iter_mut().for_each(with_samples);

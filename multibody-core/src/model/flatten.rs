@@ -152,6 +152,8 @@ pub struct FlatSystem {
     pub whens: Vec<FlatWhen>,
     /// The conditions of `sample(..)` (relations `time >= next`).
     pub samples: Vec<Id>,
+    /// The parameters of `initial()`.
+    pub initials: Vec<usize>,
 }
 
 /// A `when` clause of a flat system (see [`WhenClause`](super::WhenClause)).
@@ -430,6 +432,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             structural: Vec::new(),
             whens: Vec::new(),
             samples: Vec::new(),
+            initials: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -664,6 +667,17 @@ impl<'s> Flattener<'_, 's> {
                 component: component(),
                 message: "reinit(..) and terminate(..) belong inside a when clause".into(),
             });
+        }
+        for &p in &s.initials {
+            let o = Origin::Component {
+                path: path.clone(),
+                equation: Equation { lhs: p, rhs: p },
+            };
+            if let Some(p) = self.translate(p, &o)
+                && let Node::Param(j) = *self.flat.arena.node(p)
+            {
+                self.flat.initials.push(j as usize);
+            }
         }
         for &c in &s.samples {
             let o = Origin::Component {

@@ -94,6 +94,8 @@ pub struct System {
     pub(crate) terminates: Vec<SharedText>,
     /// The conditions that [`System::sample`] made.
     pub samples: Vec<Expr>,
+    /// The parameters that [`System::initial`] made.
+    pub initials: Vec<Expr>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
 }
@@ -215,6 +217,7 @@ impl System {
             reinits: Vec::new(),
             terminates: Vec::new(),
             samples: Vec::new(),
+            initials: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -408,6 +411,16 @@ impl System {
         self.samples.push(condition);
         self.when(condition, |s| s.equation(count, count.pre() + 1.0));
         condition
+    }
+
+    /// Modelica's `initial()` for the condition of a [`when`](Self::when) clause: true
+    /// at the initial event only, so that the clause acts once, at the start (after the
+    /// initialization). A hidden parameter `initialN`, 1 only there.
+    pub fn initial(&mut self) -> Expr {
+        let k = self.initials.len() + 1;
+        let p = self.parameter(Parameter::new(format!("initial{k}"), 0.0));
+        self.initials.push(p);
+        p
     }
 
     /// `reinit(state, value)` inside a [`when`](Self::when) clause: at its event, the

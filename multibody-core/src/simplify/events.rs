@@ -33,6 +33,8 @@ pub struct Events {
     pub whens: Vec<EventWhen>,
     /// `(parameter, variable)`: the parameters that hold `pre(variable)` at an event.
     pub pre: Vec<(usize, usize)>,
+    /// The parameters of `initial()`: 1 at the initial event, 0 elsewhere.
+    pub initial: Vec<usize>,
 }
 
 impl Events {
@@ -51,6 +53,7 @@ impl Events {
             .iter()
             .map(|r| r.parameter)
             .chain(self.pre.iter().map(|&(p, _)| p))
+            .chain(self.initial.iter().copied())
             .chain(
                 self.whens
                     .iter()
@@ -232,6 +235,7 @@ pub(crate) fn augment(flat: &mut FlatSystem) -> Events {
         relations: relations.relations,
         whens,
         pre,
+        initial: flat.initials.clone(),
     }
 }
 

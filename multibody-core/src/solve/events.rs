@@ -79,19 +79,20 @@ pub(super) fn settle_initial_relations(
 
 /// The crossing functions of an event at the initial point `(t0, y, yp)`: the
 /// conditions of `sample(..)` whose first instant is the initial time (rising), when
-/// there are such.
+/// there are such, or when the model uses `initial()` (there is an initial event then).
 pub(super) fn initial_samples(
     sys: &SimplifiedSystem,
     (t0, y, yp): (f64, &[f64], &[f64]),
     params: &[f64],
 ) -> Option<Vec<i32>> {
     let relations = &sys.model.events.relations;
-    if !relations.iter().any(|r| r.sample) {
+    let initial = !sys.model.events.initial.is_empty();
+    if !initial && !relations.iter().any(|r| r.sample) {
         return None;
     }
     let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
     if !observer.load(t0, y, yp, params) {
-        return None;
+        return initial.then(|| vec![0; relations.len()]);
     }
     let roots: Vec<i32> = relations
         .iter()
@@ -101,7 +102,7 @@ pub(super) fn initial_samples(
             i32::from(starts)
         })
         .collect();
-    roots.contains(&1).then_some(roots)
+    (initial || roots.contains(&1)).then_some(roots)
 }
 
 /// The instant of the time event `c` (an expression of parameters) at `params`.
@@ -278,6 +279,10 @@ pub(super) fn settle(
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
     *specialized = cache;
+    // initial() holds at the initial event only.
+    for &p in &sys.model.events.initial {
+        params[p] = 0.0;
+    }
     result
 }
 
@@ -314,6 +319,12 @@ fn settle_with(
             *h = evaluate(sys, w.condition, &observer.base, params, t)
                 .ok_or_else(|| not_evaluable(sys, t, &w.text, "the condition"))?
                 != 0.0;
+        }
+    }
+    // At the initial event (the start, t = tspan.0), initial() becomes true.
+    if t == tspan.0 {
+        for &p in &model.initial {
+            params[p] = 1.0;
         }
     }
     for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
