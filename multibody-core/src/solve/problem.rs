@@ -711,30 +711,11 @@ impl<'a> DaeProblem<'a> {
         let mut relaxation = BRIDGE_RELAXATION;
         if let Some(roots) = super::events::initial_samples(sys, (t0, &u0, &up0), &params) {
             // An event at the initial time: its left limit is a segment of its own.
-            run.segments.push(Segment {
-                first: run.t.len(),
-                params: params.clone(),
-            });
-            run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
-            let settled = super::events::settle(
-                sys,
-                self.tspan,
-                &mut params,
-                (t0, u0, up0),
-                &roots,
-                options,
-                (&mut run.events, &mut run.specialized),
-            )
-            .map_err(Degraded::Error)?;
-            (u0, up0) = (settled.y, settled.yp);
-            if let Some(message) = settled.terminated {
-                run.segments.push(Segment {
-                    first: run.t.len(),
-                    params: params.clone(),
-                });
-                run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
-                run.terminated = Some(Termination { t: t0, message });
-            }
+            run.point_segment(t0, &u0, &up0, &params, sys)
+                .map_err(Degraded::Error)?;
+            (u0, up0) = self
+                .at_event(&mut params, (t0, u0, up0), &roots, options, &mut run)
+                .map_err(Degraded::Error)?;
         }
         while run.terminated.is_none() {
             let segment = Segment {
@@ -810,27 +791,10 @@ impl<'a> DaeProblem<'a> {
                 SegmentEnd::Event { t, y, yp, roots } => {
                     // The event's point ends this segment (the left limit) and, once
                     // the relations have settled, starts the next (the right limit).
-                    let settled = super::events::settle(
-                        sys,
-                        self.tspan,
-                        &mut params,
-                        (t, y, yp),
-                        &roots,
-                        options,
-                        (&mut run.events, &mut run.specialized),
-                    )
-                    .map_err(Degraded::Error)?;
-                    (t0, u0, up0) = (t, settled.y, settled.yp);
-                    if let Some(message) = settled.terminated {
-                        // terminate(..): the right limit is the last point.
-                        run.segments.push(Segment {
-                            first: run.t.len(),
-                            params: params.clone(),
-                        });
-                        run.push(t0, &u0, &up0, sys).map_err(Degraded::Error)?;
-                        run.terminated = Some(Termination { t: t0, message });
-                        break;
-                    }
+                    (u0, up0) = self
+                        .at_event(&mut params, (t, y, yp), &roots, options, &mut run)
+                        .map_err(Degraded::Error)?;
+                    t0 = t;
                 }
                 SegmentEnd::Switch { t, y, yp, decision } => {
                     // The point where the selection changes ends this segment (it has
@@ -918,6 +882,33 @@ impl<'a> DaeProblem<'a> {
             events: run.events.events,
             terminated: run.terminated,
         }))
+    }
+
+    /// Settles the event at `t` (left limit `(y, yp)`, crossing functions `roots`; see
+    /// [`super::events::settle`]) and returns the right limit. Where a `terminate(..)`
+    /// ends the run there, the right limit is its last point, a segment of its own.
+    fn at_event(
+        &self,
+        params: &mut [f64],
+        (t, y, yp): (f64, Vec<f64>, Vec<f64>),
+        roots: &[i32],
+        options: &SolverOptions,
+        run: &mut Run,
+    ) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let settled = super::events::settle(
+            self.sys,
+            self.tspan,
+            params,
+            (t, y, yp),
+            roots,
+            options,
+            (&mut run.events, &mut run.specialized),
+        )?;
+        if let Some(message) = settled.terminated {
+            run.point_segment(t, &settled.y, &settled.yp, params, self.sys)?;
+            run.terminated = Some(Termination { t, message });
+        }
+        Ok((settled.y, settled.yp))
     }
 
     /// Integrates one segment from `start` with `params`, appending its points to
@@ -1245,6 +1236,23 @@ impl Run {
         self.t.truncate(k);
         self.u.truncate(k * n);
         self.up.truncate(k * n);
+    }
+
+    /// Appends the point `(t, y, yp)` as a segment of its own with `params` (an event's
+    /// left limit at the initial time, or the right limit a run ends with).
+    fn point_segment(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        yp: &[f64],
+        params: &[f64],
+        sys: &SimplifiedSystem,
+    ) -> Result<(), Error> {
+        self.segments.push(Segment {
+            first: self.t.len(),
+            params: params.to_vec(),
+        });
+        self.push(t, y, yp, sys)
     }
 
     /// Appends a point.
