@@ -123,6 +123,32 @@ pub fn ge(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
     a.into().ge(b)
 }
 
+/// `a == b` (1 when true, 0 otherwise), for discrete values (a friction element's
+/// `pre(mode) == STUCK`): never an event.
+pub fn eq(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().eq_to(b)
+}
+
+/// `a != b`, for discrete values: never an event.
+pub fn ne(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    a.into().ne_to(b)
+}
+
+/// Logical `a and b` of truth values (nonzero is true): 1 or 0.
+pub fn and(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::if_else(a.into(), Expr::if_else(b.into(), 1.0, 0.0), 0.0)
+}
+
+/// Logical `a or b` of truth values (nonzero is true): 1 or 0.
+pub fn or(a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {
+    Expr::if_else(a.into(), 1.0, Expr::if_else(b.into(), 1.0, 0.0))
+}
+
+/// Logical `not a` of a truth value (nonzero is true): 1 or 0.
+pub fn not(a: impl Into<Expr>) -> Expr {
+    Expr::if_else(a.into(), 0.0, 1.0)
+}
+
 /// Modelica's `noEvent(e)`: `e` itself, with its relations (`lt`, `ge`, ...) evaluated
 /// as they are during integration. Without it, a relation on variables or time
 /// generates an event where it changes (the integrator stops there and restarts), and

@@ -304,6 +304,7 @@ pub mod parts;
 pub mod render;
 pub mod rotational;
 pub mod sensors;
+mod tables;
 pub mod translational;
 pub mod world;
 

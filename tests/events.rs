@@ -817,3 +817,118 @@ fn initial_fires_once_at_the_start() {
     assert_eq!(sol.final_value("m.count").unwrap(), 1.0);
     assert!((sol.final_value("m.x").unwrap() - 3.0 * (-2.0f64).exp()).abs() < 1e-5);
 }
+
+component! {
+    /// A discrete variable with an equation that never settles: `n = pre(n) + 1`.
+    pub struct Runaway {
+        /// Counts the rounds of the event iteration.
+        variable n(discrete = true, start = 0.0): Real;
+        /// Something continuous.
+        variable x(start = 1.0, fixed = true): Real;
+        equation {
+            n = pre(n) + 1.0;
+            der(x) = -x;
+        }
+    }
+}
+
+component! {
+    /// A discrete variable without an equation.
+    pub struct Undefined {
+        /// Never given a value.
+        variable mode(discrete = true): Real;
+        /// Something continuous.
+        variable x(start = 1.0, fixed = true): Real;
+        equation {
+            der(x) = -x * mode;
+        }
+    }
+}
+
+component! {
+    /// A discrete variable defined by an equation of relations and `pre`: the number of
+    /// times `x` went above 1 and `hot`, whether it is above now.
+    pub struct Thermostat {
+        /// Heating on below this temperature \[K\].
+        parameter low: f64 = 1.0;
+        /// Heating off above this temperature \[K\].
+        parameter high: f64 = 2.0;
+        /// Temperature \[K\].
+        variable x(start = 0.0, fixed = true): Real;
+        /// 1 while heating (discrete).
+        variable on(discrete = true, start = 1.0): Real;
+        equation {
+            on = or(lt(x, low), and(pre(on), lt(x, high)));
+            der(x) = if_else(on, 1.0, -0.5);
+        }
+    }
+}
+
+#[test]
+fn a_discrete_equation_with_pre_switches_a_thermostat_at_the_closed_form_times() {
+    // Heats at 1 K/s from 0 to 2 (t = 2), cools at 0.5 K/s to 1 (t = 4), heats to 2
+    // (t = 5), ...: switching off at 2 + 3k and on at 4 + 3k.
+    let mut model = System::new("thermostat");
+    model.add("th", &Thermostat::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let t_end = 12.0;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 240))
+        .unwrap();
+    for k in 0..=240 {
+        let t = k as f64 * t_end / 240.0;
+        let x = if t <= 2.0 {
+            t
+        } else {
+            let s = (t - 2.0) % 3.0;
+            if s < 2.0 {
+                2.0 - 0.5 * s
+            } else {
+                1.0 + (s - 2.0)
+            }
+        };
+        let got = sol.at("th.x", t).unwrap();
+        assert!((got - x).abs() < 1e-8, "x({t}) = {got}, exact {x}");
+    }
+    assert_eq!(sol.at("th.on", 3.0).unwrap(), 0.0);
+    assert_eq!(sol.at("th.on", 4.5).unwrap(), 1.0);
+    let offs: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|e| e.condition == "th.x < th.high" && !e.value)
+        .map(|e| e.t)
+        .collect();
+    assert_eq!(offs.len(), 4, "{:?}", sol.events());
+    for (k, t) in offs.iter().enumerate() {
+        assert!((t - (2.0 + 3.0 * k as f64)).abs() < 1e-9, "off at {offs:?}");
+    }
+}
+
+#[test]
+fn a_discrete_equation_that_never_settles_is_an_error_naming_it() {
+    let mut model = System::new("runaway");
+    model.add("r", &Runaway::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let err = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("EVENT_ITERATION") || err.contains("do not settle"),
+        "{err}"
+    );
+    assert!(err.contains("r.n"), "{err}");
+}
+
+#[test]
+fn a_discrete_variable_without_an_equation_is_an_error_naming_it() {
+    let mut model = System::new("undefined");
+    model.add("u", &Undefined::default());
+    let err = structural_simplify(&model).unwrap_err().to_string();
+    assert!(
+        err.contains("u") && err.contains("`mode`") && err.contains("needs an equation"),
+        "{err}"
+    );
+}

@@ -14,6 +14,7 @@ pub const VARIABLE_MODIFIERS: &[&str] = &[
     "state_priority",
     "state_select",
     "unit",
+    "discrete",
 ];
 
 /// Attributes a parameter declaration accepts.

@@ -292,10 +292,23 @@ impl Translator {
     fn expression(&mut self, e: &Expr, initial: bool) -> syn::Result<TokenStream> {
         match e {
             Expr::Assign(a) => {
-                let (l, r) = (&a.left, &a.right);
+                let (mut l, mut r) = (a.left.clone(), a.right.clone());
+                // `initial()` in an equation (a friction element's start).
+                if !initial {
+                    with_samples(&mut l);
+                    with_samples(&mut r);
+                }
+                let uses_builder = l != a.left || r != a.right;
                 let span = a.eq_token.span;
                 Ok(if initial {
                     quote_spanned!(span=> __s.initial_equate(#l, #r);)
+                } else if uses_builder {
+                    // Both sides first: they use the builder.
+                    quote_spanned!(span=> {
+                        let __lhs = #l;
+                        let __rhs = #r;
+                        __s.equate(__lhs, __rhs);
+                    })
                 } else {
                     quote_spanned!(span=> __s.equate(#l, #r);)
                 })

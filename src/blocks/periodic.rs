@@ -140,32 +140,6 @@ component! {
     }
 }
 
-/// The piecewise-linear curve through the rows `(t, y)` of `table` at `tau` (MSL
-/// `TimeTable`'s interpolation): linear between neighbouring rows, a jump where two rows
-/// share their time, extrapolated through the first or last two rows. Each row's time
-/// is a relation on `tau`, an event.
-fn interpolation(table: &[[f64; 2]], tau: Expr) -> Expr {
-    let n = table.len();
-    if n == 1 {
-        return Expr::from(table[0][1]);
-    }
-    let line = |i: usize| {
-        let ([t0, y0], [t1, y1]) = (table[i - 1], table[i]);
-        let dt = t1 - t0;
-        if dt <= 100.0 * f64::EPSILON * t1.abs() {
-            Expr::from(y1)
-        } else {
-            (tau - t0) * ((y1 - y0) / dt) + y0
-        }
-    };
-    // From the last interval (which extrapolates) back to the first.
-    let mut curve = line(n - 1);
-    for i in (1..n - 1).rev() {
-        curve = if_else(lt(tau, table[i][0]), line(i), curve);
-    }
-    curve
-}
-
 component! {
     /// A signal interpolated linearly in a table of `(time, value)` rows (MSL
     /// `Blocks.Sources.TimeTable`): the first row at time 0, times increasing, a jump
@@ -195,7 +169,7 @@ component! {
                 "the times of the table must be finite and increasing"
             );
             if !table.is_empty() {
-                let curve = interpolation(&table, time - shift_time);
+                let curve = crate::tables::interpolate(&table, time - shift_time, true);
                 y = offset + if_else(lt(time, start_time), 0.0, curve);
             } else {
                 y = offset;

@@ -3,11 +3,13 @@
 //! component).
 
 mod components;
+mod friction;
 mod interfaces;
 mod sensors;
 mod sources;
 
 pub use components::*;
+pub use friction::*;
 pub use interfaces::*;
 pub use sensors::*;
 pub use sources::*;

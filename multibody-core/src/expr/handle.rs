@@ -336,6 +336,14 @@ impl Expr {
     pub fn ge(self, b: impl Into<Expr>) -> Expr {
         self.cmp(Cmp::Ge, b)
     }
+    /// `self == b` (never an event: for discrete values)
+    pub fn eq_to(self, b: impl Into<Expr>) -> Expr {
+        self.cmp(Cmp::Eq, b)
+    }
+    /// `self != b` (never an event: for discrete values)
+    pub fn ne_to(self, b: impl Into<Expr>) -> Expr {
+        self.cmp(Cmp::Ne, b)
+    }
 
     /// `if cond then a else b` (cond nonzero means true).
     pub fn if_else(cond: Expr, a: impl Into<Expr>, b: impl Into<Expr>) -> Expr {

@@ -239,7 +239,7 @@ impl FlatSystem {
             Origin::DynamicStates { text } => format!("dynamic state selection: {text}"),
             Origin::Crossing { relation } => format!("crossing function of {relation}"),
             Origin::Discrete { variable } => {
-                format!("{variable} holds the value its when clause gave it")
+                format!("{variable} holds the value it took at the last event")
             }
             Origin::Assertion { path, condition } => {
                 let at = if path.is_empty() { "model" } else { path };

@@ -71,6 +71,11 @@ pub struct Variable {
     pub state_priority: f64,
     /// Role in connections (default: [`VarKind::Internal`]).
     pub kind: VarKind,
+    /// Whether it is a discrete variable (Modelica's `discrete`, `Boolean`, `Integer`;
+    /// default: false): constant between events. One that no `when` clause assigns is
+    /// defined by an equation `v = expr`, evaluated at every event (see
+    /// [`System::when`](crate::model::System::when)).
+    pub discrete: bool,
     /// The interned symbol of `name`, recorded when declared in a system.
     pub(crate) symbol: Option<u32>,
 }
@@ -87,6 +92,7 @@ impl Variable {
             unit: SharedText::default(),
             state_priority: 0.0,
             kind: VarKind::Internal,
+            discrete: false,
             symbol: None,
         }
     }
@@ -130,6 +136,12 @@ impl Variable {
     /// Sets the state priority from a Modelica `StateSelect`.
     pub fn state_select(mut self, s: StateSelect) -> Self {
         self.state_priority = s.priority();
+        self
+    }
+
+    /// Declares it discrete (see [`Variable::discrete`]).
+    pub fn discrete(mut self, discrete: bool) -> Self {
+        self.discrete = discrete;
         self
     }
 

@@ -152,15 +152,16 @@ impl Temporaries<'_> {
 
 /// Whether `coefficient` cannot vanish: a nonzero constant, or an expression of
 /// parameters only that is nonzero for the parameter values `params` (the defaults:
-/// products of inertia are 0 by default, masses are not).
+/// products of inertia are 0 by default, masses are not; a NaN value marks a parameter
+/// that may take any value).
 pub fn safe_coefficient(arena: &Arena, coefficient: Id, params: &[f64]) -> bool {
     if let Some(c) = arena.as_const(coefficient) {
         return c != 0.0 && c.is_finite();
     }
-    let only_params = arena
-        .leaves(coefficient)
-        .iter()
-        .all(|&l| matches!(arena.node(l), Node::Param(_)));
+    // Parameters without a value (NaN: those that events change) make it unsafe.
+    let only_params = arena.leaves(coefficient).iter().all(|&l| {
+        matches!(arena.node(l), Node::Param(j) if params.get(*j as usize).is_some_and(|v| v.is_finite()))
+    });
     if !only_params {
         return false;
     }

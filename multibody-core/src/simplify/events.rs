@@ -19,10 +19,17 @@
 //! (`events.discrete[k]`) that the equation `v = events.discrete[k]` gives to `v`,
 //! changed only at events; `pre(x)` in a clause reads a parameter (`events.pre[k]`)
 //! that holds `x` just before the event, and is `x` itself in the equations.
+//!
+//! A variable declared discrete that no clause assigns is defined by its equation
+//! `v = expr` (a friction element's `mode`, `locked`): the equation becomes a
+//! [`DiscreteEquation`], evaluated at every round of every event's iteration with
+//! `pre(x)` the value of the round before, and `v` is held by a parameter in between.
+//! Such equations and the continuous ones that depend on them form a mixed system that
+//! the event iteration solves by alternating the two until nothing changes.
 
 use crate::expr::{Cmp, Func1, Id, Node, NodeMap};
 use crate::hash::HashSet;
-use crate::model::{FlatEquation, FlatSystem, Origin, Parameter, SharedText, Variable};
+use crate::model::{FlatEquation, FlatSystem, ModelError, Origin, Parameter, SharedText, Variable};
 
 /// What generates events in a model, and what happens at them.
 #[derive(Clone, Debug, Default)]
@@ -35,13 +42,31 @@ pub struct Events {
     pub pre: Vec<(usize, usize)>,
     /// The parameters of `initial()`: 1 at the initial event, 0 elsewhere.
     pub initial: Vec<usize>,
+    /// The discrete variables defined by equations, in the order they are evaluated
+    /// (each after those it reads).
+    pub equations: Vec<DiscreteEquation>,
+    /// `(variable, parameter)`: every discrete variable and the parameter that holds it.
+    pub discrete: Vec<(usize, usize)>,
+}
+
+/// The equation `v = value` of a discrete variable that no `when` clause assigns: its
+/// parameter takes `value` at every round of an event's iteration.
+#[derive(Clone, Debug)]
+pub struct DiscreteEquation {
+    /// The variable's full name.
+    pub name: String,
+    /// The parameter that holds it.
+    pub parameter: usize,
+    /// Its value: relations by their parameters, `pre(x)` by the parameters of
+    /// [`Events::pre`], discrete variables by their parameters.
+    pub value: Id,
 }
 
 impl Events {
     /// Whether the model has neither relations that generate events nor `when`
     /// clauses.
     pub fn is_empty(&self) -> bool {
-        self.relations.is_empty() && self.whens.is_empty()
+        self.relations.is_empty() && self.whens.is_empty() && self.equations.is_empty()
     }
 
     /// Per parameter (of `n`): whether events change it (a relation's value, a
@@ -54,6 +79,7 @@ impl Events {
             .map(|r| r.parameter)
             .chain(self.pre.iter().map(|&(p, _)| p))
             .chain(self.initial.iter().copied())
+            .chain(self.equations.iter().map(|d| d.parameter))
             .chain(
                 self.whens
                     .iter()
@@ -227,16 +253,75 @@ fn add_parameter(
 /// events into relation parameters and crossing variables, and the discrete variables
 /// and `pre` values of its `when` clauses into parameters (see the module
 /// documentation); returns what the solver needs of them.
-pub(crate) fn augment(flat: &mut FlatSystem) -> Events {
+pub(crate) fn augment(flat: &mut FlatSystem) -> Result<Events, ModelError> {
     let mut relations = relations(flat);
-    let (whens, pre, discrete) = whens(flat, &relations);
+    let defined = discrete_equations(flat)?;
+    let (whens, pre, discrete, equations) = whens(flat, &relations, defined);
     time_events(flat, &mut relations, &discrete);
-    Events {
+    Ok(Events {
         relations: relations.relations,
         whens,
         pre,
         initial: flat.initials.clone(),
+        equations,
+        discrete: discrete.iter().map(|&(v, p)| (v as usize, p)).collect(),
+    })
+}
+
+/// The discrete variables that no `when` clause assigns, with the right-hand sides of
+/// their equations `v = expr`, which leave the equations.
+fn discrete_equations(flat: &mut FlatSystem) -> Result<Vec<(u32, Id)>, ModelError> {
+    let assigned: HashSet<u32> = flat
+        .whens
+        .iter()
+        .flat_map(|w| w.assignments.iter().map(|&(v, _)| v))
+        .collect();
+    let wanted: Vec<u32> = (0..flat.variables.len() as u32)
+        .filter(|v| flat.variables[*v as usize].discrete && !assigned.contains(v))
+        .collect();
+    if wanted.is_empty() {
+        return Ok(Vec::new());
     }
+    let mut taken = HashSet::default();
+    let mut out = Vec::with_capacity(wanted.len());
+    for v in wanted {
+        let x = flat.arena.var(v);
+        let found = flat.equations.iter().enumerate().find_map(|(k, e)| {
+            if e.lhs_var != Some(v) || taken.contains(&k) {
+                return None;
+            }
+            // The residual is `v - value` (`pre(v)` in the value is no occurrence of v).
+            let value = flat.arena.sub(x, e.residual);
+            let mut occurs = false;
+            flat.arena.walk(value, &mut |l, node| match *node {
+                Node::F1(Func1::Pre, _) => false,
+                _ => {
+                    occurs |= l == x;
+                    !occurs
+                }
+            });
+            (!occurs).then_some((k, value))
+        });
+        let Some((k, value)) = found else {
+            let name = flat.variables[v as usize].name.to_string();
+            let (component, short) = name.rsplit_once('.').unwrap_or(("", &name));
+            return Err(ModelError::InvalidWhen {
+                component: component.to_string(),
+                message: format!(
+                    "the discrete variable `{short}` needs an equation `{short} = ...` or a \
+                     when clause that assigns it"
+                ),
+            });
+        };
+        taken.insert(k);
+        out.push((v, value));
+    }
+    let mut k = 0;
+    flat.equations.retain(|_| {
+        k += 1;
+        !taken.contains(&(k - 1))
+    });
+    Ok(out)
 }
 
 /// Marks the relations of time alone, `time - c` with `c` of parameters and discrete
@@ -339,12 +424,19 @@ fn relations(flat: &mut FlatSystem) -> Relations {
     }
 }
 
-/// The clauses, the `pre` parameters and the discrete variables with their parameters.
-type Whens = (Vec<EventWhen>, Vec<(usize, usize)>, Vec<(u32, usize)>);
+/// The clauses, the `pre` parameters, the discrete variables with their parameters and
+/// the discrete equations.
+type Whens = (
+    Vec<EventWhen>,
+    Vec<(usize, usize)>,
+    Vec<(u32, usize)>,
+    Vec<DiscreteEquation>,
+);
 
-/// The `when` clauses of [`augment`], its `pre` parameters and its discrete variables;
-/// `pre(x)` in the equations becomes `x`.
-fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
+/// The `when` clauses of [`augment`], its `pre` parameters, its discrete variables and
+/// the discrete equations from `defined` (variables and right-hand sides); `pre(x)` in
+/// the equations becomes `x`.
+fn whens(flat: &mut FlatSystem, relations: &Relations, defined: Vec<(u32, Id)>) -> Whens {
     let in_equations = if flat.arena.has_pre() {
         find_pre(
             flat,
@@ -373,8 +465,8 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
             *d = flat.arena.substitute_memo(*d, &map, &mut memo);
         }
     }
-    if flat.whens.is_empty() {
-        return (Vec::new(), Vec::new(), Vec::new());
+    if flat.whens.is_empty() && defined.is_empty() {
+        return (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     }
     let base = free_name(flat, "events");
     // The discrete variables, each held by a parameter.
@@ -383,6 +475,7 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
         .whens
         .iter()
         .flat_map(|w| w.assignments.iter().map(|&(v, _)| v))
+        .chain(defined.iter().map(|&(v, _)| v))
         .collect();
     for v in assigned {
         if discrete.iter().any(|&(d, _)| d == v) {
@@ -414,6 +507,7 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
                 .chain(w.assignments.iter().map(|&(_, e)| e))
                 .chain(w.reinits.iter().map(|&(_, e)| e))
         })
+        .chain(defined.iter().map(|&(_, e)| e))
         .collect();
     let mut map = relations.map.clone();
     let mut pre = Vec::new();
@@ -424,11 +518,12 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
         let image = match *flat.arena.node(a) {
             Node::Var(v) => {
                 let name = flat.variables[v as usize].name.to_string();
+                let start = flat.starts[v as usize];
                 let k = add_parameter(
                     flat,
                     format!("{base}.pre[{}]", pre.len() + 1),
                     format!("{name} just before the event"),
-                    None,
+                    start,
                 );
                 pre.push((k, v as usize));
                 flat.arena.param(k as u32)
@@ -471,5 +566,68 @@ fn whens(flat: &mut FlatSystem, relations: &Relations) -> Whens {
         });
     }
     flat.whens = whens;
-    (out, pre, discrete)
+    let equations = ordered_equations(flat, &defined, &discrete, &map);
+    (out, pre, discrete, equations)
+}
+
+/// The discrete equations of `defined`, with `map` applied and the discrete variables
+/// read from their parameters, each after the others it reads (as written where they
+/// read each other in a cycle, which the event iteration then settles).
+fn ordered_equations(
+    flat: &mut FlatSystem,
+    defined: &[(u32, Id)],
+    discrete: &[(u32, usize)],
+    map: &NodeMap,
+) -> Vec<DiscreteEquation> {
+    let mut map = map.clone();
+    for &(v, p) in discrete {
+        let (x, held) = (flat.arena.var(v), flat.arena.param(p as u32));
+        map.insert(x, held);
+    }
+    let mut memo = NodeMap::default();
+    let parameter_of = |v: u32| discrete.iter().find(|&&(d, _)| d == v).expect("held").1;
+    let equations: Vec<DiscreteEquation> = defined
+        .iter()
+        .map(|&(v, e)| DiscreteEquation {
+            name: flat.variables[v as usize].name.to_string(),
+            parameter: parameter_of(v),
+            value: flat.arena.substitute_memo(e, &map, &mut memo),
+        })
+        .collect();
+    // Depth-first order over the parameters each value reads.
+    let position: crate::hash::HashMap<usize, usize> = equations
+        .iter()
+        .enumerate()
+        .map(|(k, d)| (d.parameter, k))
+        .collect();
+    let reads: Vec<Vec<usize>> = equations
+        .iter()
+        .map(|d| {
+            flat.arena
+                .leaves(d.value)
+                .iter()
+                .filter_map(|&l| match *flat.arena.node(l) {
+                    Node::Param(j) => position.get(&(j as usize)).copied(),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    let mut state = vec![0u8; equations.len()];
+    let mut order = Vec::with_capacity(equations.len());
+    fn visit(k: usize, reads: &[Vec<usize>], state: &mut [u8], order: &mut Vec<usize>) {
+        if state[k] != 0 {
+            return;
+        }
+        state[k] = 1;
+        for &j in &reads[k] {
+            visit(j, reads, state, order);
+        }
+        state[k] = 2;
+        order.push(k);
+    }
+    for k in 0..equations.len() {
+        visit(k, &reads, &mut state, &mut order);
+    }
+    order.into_iter().map(|k| equations[k].clone()).collect()
 }

@@ -47,7 +47,7 @@ pub use crate::codegen::dae::ResidualRow;
 pub use causalize::{BlockKind, LinearBlockLimits};
 pub use dynamic_states::DynamicStateGroup;
 pub use error::SimplifyError;
-pub use events::{EventRelation, EventWhen, Events, Reinit};
+pub use events::{DiscreteEquation, EventRelation, EventWhen, Events, Reinit};
 pub use reduce::Slot;
 use system::{DynamicSelection, ModelData, Reduction, Sorted};
 pub use system::{PhaseTimes, SimplifiedSystem, StateCandidates, Statistics};
@@ -202,7 +202,7 @@ fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage,
     let mut flat = flatten(model)?;
     let mut evaluated_parameters =
         evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
-    let events = events::augment(&mut flat);
+    let events = events::augment(&mut flat)?;
     check_balance(&flat)?;
     evaluated_parameters.resize(flat.parameters.len(), false);
     Ok(FlatStage {
@@ -279,9 +279,16 @@ fn simplify_flat(
         return Ok(Simplified::NeedsDynamicStates(reduced.dynamic));
     }
 
-    let default_params =
+    let mut default_params =
         crate::model::evaluate_bindings(&flat.arena, &flat.parameter_values, &HashMap::default())
             .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
+    // What events change has no default to rely on: no coefficient of it is safe to
+    // divide by (a friction element's `if locked then 0 else 1`).
+    for (p, changes) in events.parameters(default_params.len()).iter().enumerate() {
+        if *changes {
+            default_params[p] = f64::NAN;
+        }
+    }
     let causal = causalize_stage(
         &mut flat.arena,
         &flat.derivative_rules,

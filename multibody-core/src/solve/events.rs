@@ -86,7 +86,8 @@ pub(super) fn initial_samples(
     params: &[f64],
 ) -> Option<Vec<i32>> {
     let relations = &sys.model.events.relations;
-    let initial = !sys.model.events.initial.is_empty();
+    // initial() and the discrete equations (evaluated first at the initial event).
+    let initial = !sys.model.events.initial.is_empty() || !sys.model.events.equations.is_empty();
     if !initial && !relations.iter().any(|r| r.sample) {
         return None;
     }
@@ -303,7 +304,7 @@ fn settle_with(
     let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
     // Before the event: pre(x), and whether each when condition held.
     let mut held = vec![false; model.whens.len()];
-    if !model.whens.is_empty() {
+    if !model.whens.is_empty() || !model.equations.is_empty() {
         if !observer.load(t, &y, &yp, params) {
             return Err(not_evaluable(
                 sys,
@@ -321,6 +322,7 @@ fn settle_with(
                 != 0.0;
         }
     }
+    let previous = pre_of_discrete(model);
     // At the initial event (the start, t = tspan.0), initial() becomes true.
     if t == tspan.0 {
         for &p in &model.initial {
@@ -335,31 +337,43 @@ fn settle_with(
     let tout1 = t + 1e-3 * (tspan.1 - tspan.0);
     let mut changing = Vec::new();
     for _ in 0..MAX_EVENT_ITERATIONS {
-        let (settings, extended) = ida_settings(sys, c, options);
-        let mut f = CompiledFunctions::new(c, params, extended);
-        (y, yp) = ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
-            Error::from(SolveError {
-                model: sys.model.name.clone(),
-                t: e.t,
-                flag: e.flag,
-                message: e.message,
-            })
-        })?;
-        if !observer.load(t, &y, &yp, params) {
-            return Ok(Settled { y, yp, terminated });
+        // The mixed system at fixed pre values: the continuous unknowns with the
+        // discrete values, then the relations and the discrete equations from them,
+        // until they agree.
+        let mut settled = false;
+        for _ in 0..MAX_EVENT_ITERATIONS {
+            let (settings, extended) = ida_settings(sys, c, options);
+            let mut f = CompiledFunctions::new(c, params, extended);
+            (y, yp) =
+                ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
+                    Error::from(SolveError {
+                        model: sys.model.name.clone(),
+                        t: e.t,
+                        flag: e.flag,
+                        message: e.message,
+                    })
+                })?;
+            if !observer.load(t, &y, &yp, params) {
+                return Ok(Settled { y, yp, terminated });
+            }
+            changing.clear();
+            update_relations(
+                sys,
+                params,
+                &observer.base,
+                roots,
+                t,
+                history,
+                &mut changing,
+            )?;
+            update_discrete(sys, params, &observer.base, t, &mut changing)?;
+            if changing.is_empty() {
+                settled = true;
+                break;
+            }
         }
-        changing.clear();
-        for (k, (r, &dir)) in model.relations.iter().zip(roots).enumerate() {
-            // A relation that crossed here keeps the value its crossing gave it while
-            // its crossing function stays at zero (where evaluating it decides
-            // nothing); one that a reinit or a discrete change moved away is evaluated.
-            let g = observer.base[r.crossing];
-            if dir != 0 && g.abs() <= CROSSING_ZERO {
-                continue;
-            }
-            if history.set(sys, params, k, r.holds(g), t)? {
-                changing.push(r.text.clone());
-            }
+        if !settled {
+            return Err(unsettled(sys, t, &changing));
         }
         // Whether a clause of the current when/elsewhen chain fired this round.
         let mut chain_fired = false;
@@ -390,11 +404,87 @@ fn settle_with(
             }
             *h = now;
         }
+        // The next round's pre(v) of a discrete variable is its value from this one.
+        for &(k, p) in &previous {
+            if params[k] != params[p] {
+                params[k] = params[p];
+                changing.push(sys.model.parameters[p].description.to_string());
+            }
+        }
         if changing.is_empty() {
             return Ok(Settled { y, yp, terminated });
         }
     }
     Err(unsettled(sys, t, &changing))
+}
+
+/// Sets the relations from the crossing functions in `base` (the flat variables'
+/// values); pushes those that changed to `changing`. `roots` are the crossings that
+/// ended the integration.
+fn update_relations(
+    sys: &SimplifiedSystem,
+    params: &mut [f64],
+    base: &[f64],
+    roots: &[i32],
+    t: f64,
+    history: &mut History,
+    changing: &mut Vec<String>,
+) -> Result<(), Error> {
+    for (k, (r, &dir)) in sys.model.events.relations.iter().zip(roots).enumerate() {
+        // A relation that crossed here keeps the value its crossing gave it while its
+        // crossing function stays at zero (where evaluating it decides nothing); one
+        // that a reinit or a discrete change moved away is evaluated.
+        let g = base[r.crossing];
+        if dir != 0 && g.abs() <= CROSSING_ZERO {
+            continue;
+        }
+        if history.set(sys, params, k, r.holds(g), t)? {
+            changing.push(r.text.clone());
+        }
+    }
+    Ok(())
+}
+
+/// Evaluates the discrete equations, each after those it reads, at the flat variables'
+/// values `base`; pushes the variables that changed to `changing`.
+fn update_discrete(
+    sys: &SimplifiedSystem,
+    params: &mut [f64],
+    base: &[f64],
+    t: f64,
+    changing: &mut Vec<String>,
+) -> Result<(), Error> {
+    for d in &sys.model.events.equations {
+        let v = evaluate(sys, d.value, base, params, t).ok_or_else(|| {
+            Error::from(SolveError {
+                model: sys.model.name.clone(),
+                t,
+                flag: "WHEN".into(),
+                message: format!(
+                    "the equation of the discrete variable `{}` is not a finite value of \
+                     variables, parameters and time",
+                    d.name
+                ),
+            })
+        })?;
+        if params[d.parameter] != v {
+            params[d.parameter] = v;
+            changing.push(d.name.clone());
+        }
+    }
+    Ok(())
+}
+
+/// `(pre parameter, parameter)` for each `pre(v)` of a discrete variable `v`.
+fn pre_of_discrete(model: &crate::simplify::Events) -> Vec<(usize, usize)> {
+    model
+        .pre
+        .iter()
+        .filter_map(|&(k, v)| {
+            let &(_, p) = model.discrete.iter().find(|&&(d, _)| d == v)?;
+            Some((k, p))
+        })
+        .collect()
 }
 
 /// The right limit at a settled event.
