@@ -1,12 +1,11 @@
 //! Functions for equations: `der`, elementary functions, and conditionals.
 //!
 //! They accept anything that converts to an [`Expr`] (numbers, variables, signals), so
-//! equations read as in Modelica: `der(phi) = w;`, `y = k * sin(2.0 * PI * f * time);`.
+//! equations read as in Modelica: `der(phi) = w;`, `y = k * sin(2.0 * PI * f * time);`
+//! (`PI` from the [`prelude`](crate::prelude)).
 
 use multibody_core::expr::Expr;
 use multibody_core::model::Signal;
-
-pub use std::f64::consts::PI;
 
 /// Something with a time derivative.
 pub trait Derivative {

@@ -302,6 +302,7 @@ mod mechanism;
 mod numeric;
 pub mod parts;
 pub mod render;
+pub mod robot_r3;
 pub mod rotational;
 pub mod sensors;
 mod tables;
@@ -366,6 +367,7 @@ pub mod prelude {
         Signal, SimplifiedSystem, Solution, SolverOptions, StateSelect, System, TypedComponent,
         Variable, component, connector, plot, plot_figure, structural_simplify, system,
     };
+    pub use std::f64::consts::PI;
 }
 
 /// Paths used by the code the macros generate. Not a public API.

@@ -40,6 +40,30 @@ component! {
 }
 
 component! {
+    /// Weighted sum of three inputs (MSL `Blocks.Math.Add3`).
+    #[type_name = "Blocks.Add3"]
+    pub struct Add3 {
+        /// Gain of the first input, default 1.
+        parameter k1: f64 = 1.0;
+        /// Gain of the second input, default 1.
+        parameter k2: f64 = 1.0;
+        /// Gain of the third input, default 1.
+        parameter k3: f64 = 1.0;
+        /// First input.
+        connector u1: RealInput;
+        /// Second input.
+        connector u2: RealInput;
+        /// Third input.
+        connector u3: RealInput;
+        /// Output `k1 u1 + k2 u2 + k3 u3`.
+        connector y: RealOutput;
+        equation {
+            y = k1 * u1 + k2 * u2 + k3 * u3;
+        }
+    }
+}
+
+component! {
     /// Difference of a reference and a feedback signal (MSL `Blocks.Math.Feedback`).
     #[type_name = "Blocks.Feedback"]
     pub struct Feedback {

@@ -5,6 +5,7 @@
 mod continuous;
 mod discrete;
 mod interfaces;
+mod kinematic;
 mod logical;
 mod math;
 mod periodic;
@@ -13,6 +14,7 @@ mod sources;
 pub use continuous::*;
 pub use discrete::*;
 pub use interfaces::*;
+pub use kinematic::*;
 pub use logical::*;
 pub use math::*;
 pub use periodic::*;

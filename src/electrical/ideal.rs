@@ -2,7 +2,7 @@
 //! along a piecewise-linear characteristic, whose kink (`s = 0`, or the control's
 //! switch) is an event.
 
-use super::OnePort;
+use super::{OnePort, Pin};
 use crate::blocks::RealInput;
 use crate::prelude::*;
 
@@ -70,6 +70,41 @@ component! {
             let open = le(control, 0.5);
             v = s * if_else(open, 1.0, Ron);
             i = s * if_else(open, Goff, 1.0);
+        }
+    }
+}
+
+component! {
+    /// An ideal operational amplifier (MSL `Analog.Ideal.IdealOpAmp`, a nullator-norator
+    /// pair): no voltage between the inputs `p1`, `n1` and no current into them; the
+    /// output port `p2`, `n2` takes whatever current and voltage the circuit needs.
+    #[type_name = "Electrical.IdealOpAmp"]
+    pub struct IdealOpAmp {
+        /// Positive input.
+        connector p1: Pin;
+        /// Negative input.
+        connector n1: Pin;
+        /// Positive output.
+        connector p2: Pin;
+        /// Negative output.
+        connector n2: Pin;
+        /// Input voltage `p1.v - n1.v` [V].
+        variable v1: Real;
+        /// Output voltage `p2.v - n2.v` [V].
+        variable v2: Real;
+        /// Current into the input `p1` [A].
+        variable i1: Real;
+        /// Current into the output `p2` [A].
+        variable i2: Real;
+        equation {
+            v1 = p1.v - n1.v;
+            v2 = p2.v - n2.v;
+            0.0 = p1.i + n1.i;
+            0.0 = p2.i + n2.i;
+            i1 = p1.i;
+            i2 = p2.i;
+            v1 = 0.0;
+            i1 = 0.0;
         }
     }
 }

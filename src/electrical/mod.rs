@@ -6,7 +6,9 @@ use crate::prelude::*;
 use crate::rotational;
 
 mod ideal;
+mod sensors;
 pub use ideal::*;
+pub use sensors::*;
 
 connector! {
     /// An electrical pin (MSL `Pin`, `PositivePin`, `NegativePin`).

@@ -128,3 +128,46 @@ component! {
         }
     }
 }
+
+component! {
+    /// Sets the initial angle, speed and acceleration of a flange from signals, without
+    /// a torque on it (MSL `Rotational.Components.InitializeFlange`); its angle and speed
+    /// are preferred as states.
+    #[type_name = "Rotational.InitializeFlange"]
+    pub struct InitializeFlange {
+        /// Whether `phi_start` sets the initial angle, default true.
+        structural use_phi_start: bool = true;
+        /// Whether `w_start` sets the initial speed, default true.
+        structural use_w_start: bool = true;
+        /// Whether `a_start` sets the initial acceleration, default true.
+        structural use_a_start: bool = true;
+        /// Initial angle [rad].
+        connector phi_start: crate::blocks::RealInput;
+        /// Initial speed [rad/s].
+        connector w_start: crate::blocks::RealInput;
+        /// Initial acceleration [rad/s2].
+        connector a_start: crate::blocks::RealInput;
+        /// The flange to initialize.
+        connector flange: Flange;
+        /// The flange's angle [rad].
+        variable phi_flange(state_priority = StateSelect::Prefer.priority()): Real;
+        /// The flange's speed [rad/s].
+        variable w_flange(state_priority = StateSelect::Prefer.priority()): Real;
+        equation {
+            phi_flange = flange.phi;
+            w_flange = der(phi_flange);
+            flange.tau = 0.0;
+        }
+        initial_equation {
+            if use_phi_start {
+                phi_flange = phi_start;
+            }
+            if use_w_start {
+                w_flange = w_start;
+            }
+            if use_a_start {
+                der(w_flange) = a_start;
+            }
+        }
+    }
+}

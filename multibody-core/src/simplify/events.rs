@@ -146,12 +146,25 @@ pub struct EventRelation {
     /// For a relation of time, `time - c` with `c` an expression of parameters (a time
     /// event: the integration stops at `c` exactly, without root finding): `c`.
     pub time_event: Option<Id>,
+    /// Whether only discrete equations read it (not the continuous equations, not a
+    /// `when` clause): where it changes without changing a discrete variable, nothing
+    /// else changes either (a stuck friction element's speed, at zero up to rounding).
+    pub only_discrete: bool,
 }
 
 impl EventRelation {
     /// Whether the relation holds where its crossing function is `g`.
     pub fn holds(&self, g: f64) -> bool {
         self.op.apply(g, 0.0) != 0.0
+    }
+
+    /// The shift of the crossing function `g` that makes the relation, now `value`,
+    /// change only once `g` is `band` beyond zero on the other side (hysteresis: a
+    /// crossing function that stays at zero, as a stuck friction element's relative
+    /// speed, does not chatter).
+    pub fn hysteresis(&self, value: bool, band: f64) -> f64 {
+        let positive_side = matches!(self.op, Cmp::Gt | Cmp::Ge) == value;
+        if positive_side { band } else { -band }
     }
 
     /// Whether the relation holds just after its crossing function passed through 0,
@@ -258,6 +271,9 @@ pub(crate) fn augment(flat: &mut FlatSystem) -> Result<Events, ModelError> {
     let defined = discrete_equations(flat)?;
     let (whens, pre, discrete, equations) = whens(flat, &relations, defined);
     time_events(flat, &mut relations, &discrete);
+    if !equations.is_empty() {
+        mark_only_discrete(flat, &mut relations.relations, &whens);
+    }
     Ok(Events {
         relations: relations.relations,
         whens,
@@ -266,6 +282,28 @@ pub(crate) fn augment(flat: &mut FlatSystem) -> Result<Events, ModelError> {
         equations,
         discrete: discrete.iter().map(|&(v, p)| (v as usize, p)).collect(),
     })
+}
+
+/// Marks the relations that neither the equations nor the `when` clauses read.
+fn mark_only_discrete(flat: &FlatSystem, relations: &mut [EventRelation], whens: &[EventWhen]) {
+    let mut read = HashSet::default();
+    let roots = (flat.equations.iter().map(|e| e.residual))
+        .chain(flat.derivative_rules.iter().map(|&(_, d)| d))
+        .chain(whens.iter().flat_map(|w| {
+            std::iter::once(w.condition)
+                .chain(w.assignments.iter().map(|&(_, e)| e))
+                .chain(w.reinits.iter().map(|r| r.value))
+        }));
+    for root in roots {
+        for &l in &flat.arena.leaves(root) {
+            if let Node::Param(j) = *flat.arena.node(l) {
+                read.insert(j as usize);
+            }
+        }
+    }
+    for r in relations {
+        r.only_discrete = !read.contains(&r.parameter);
+    }
 }
 
 /// The discrete variables that no `when` clause assigns, with the right-hand sides of
@@ -406,6 +444,7 @@ fn relations(flat: &mut FlatSystem) -> Relations {
             text,
             sample: flat.samples.contains(&c),
             time_event: None,
+            only_discrete: false,
         });
     }
     // The relations held: every equation sees the relation parameters (the crossing

@@ -183,7 +183,14 @@ fn not_evaluable(sys: &SimplifiedSystem, t: f64, clause: &str, what: &str) -> Er
 /// A crossing function this close to zero is at its zero (the root finding locates it
 /// to about the rounding of time, where a crossing function is many orders of
 /// magnitude smaller than this).
-const CROSSING_ZERO: f64 = 1e-8;
+pub(super) const CROSSING_ZERO: f64 = 1e-8;
+
+/// A quiet relation (see [`History::quiet`]) whose crossing function starts an
+/// integration at zero changes only once it is this far beyond zero on the other side
+/// (a hysteresis: without it, a crossing function that stays at zero up to rounding, as
+/// the relative speed of a stuck friction element, would generate events at every sign
+/// change of its rounding errors).
+pub(super) const HYSTERESIS: f64 = 1e-10;
 
 /// Times a relation takes the same value in quick succession before the events are
 /// said to accumulate.
@@ -196,6 +203,10 @@ const ACCUMULATION_INTERVAL: f64 = 1e-9;
 pub(super) struct History {
     /// Every event, in time order.
     pub events: Vec<Event>,
+    /// Per relation: whether it changed last at an event where nothing else did (no
+    /// discrete variable): the next integration gives its crossing function a
+    /// hysteresis while it stays at zero.
+    pub quiet: Vec<bool>,
     last: Vec<[(f64, usize); 2]>,
     interval: f64,
 }
@@ -205,8 +216,24 @@ impl History {
     pub(super) fn new(sys: &SimplifiedSystem, tspan: (f64, f64)) -> Self {
         History {
             events: Vec::new(),
+            quiet: vec![false; sys.model.events.relations.len()],
             last: vec![[(f64::NEG_INFINITY, 0); 2]; sys.model.events.relations.len()],
             interval: ACCUMULATION_INTERVAL * (tspan.1 - tspan.0).abs(),
+        }
+    }
+
+    /// Marks the relations that changed from `before` (of [`event_values`]) to `params`
+    /// as quiet where they are read only by discrete equations and no discrete variable
+    /// changed, and as not quiet where something did.
+    fn mark_quiet(&mut self, sys: &SimplifiedSystem, before: &[f64], params: &[f64]) {
+        let after = event_values(sys, params);
+        let relations = &sys.model.events.relations;
+        let n = relations.len();
+        let discrete_changed = before[n..] != after[n..];
+        for (k, r) in relations.iter().enumerate() {
+            if before[k] != after[k] {
+                self.quiet[k] = r.only_discrete && !discrete_changed;
+            }
         }
     }
 
@@ -278,7 +305,11 @@ pub(super) fn settle(
 ) -> Result<Settled, Error> {
     let cache = specialized_for(sys, params, options, specialized.take());
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
+    let before = event_values(sys, params);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
+    if result.is_ok() {
+        history.mark_quiet(sys, &before, params);
+    }
     *specialized = cache;
     // initial() holds at the initial event only.
     for &p in &sys.model.events.initial {
@@ -340,19 +371,23 @@ fn settle_with(
         // The mixed system at fixed pre values: the continuous unknowns with the
         // discrete values, then the relations and the discrete equations from them,
         // until they agree.
-        let mut settled = false;
-        for _ in 0..MAX_EVENT_ITERATIONS {
+        let consistent = |params: &[f64], y: &[f64], yp: &[f64]| {
             let (settings, extended) = ida_settings(sys, c, options);
             let mut f = CompiledFunctions::new(c, params, extended);
-            (y, yp) =
-                ida::consistent_values(&mut f, t, &y, &yp, &settings, tout1).map_err(|e| {
-                    Error::from(SolveError {
-                        model: sys.model.name.clone(),
-                        t: e.t,
-                        flag: e.flag,
-                        message: e.message,
-                    })
-                })?;
+            ida::consistent_values(&mut f, t, y, yp, &settings, tout1).map_err(|e| {
+                Error::from(SolveError {
+                    model: sys.model.name.clone(),
+                    t: e.t,
+                    flag: e.flag,
+                    message: e.message,
+                })
+            })
+        };
+        // The event parameters of each round, to recognize a cycle.
+        let mut seen: Vec<Vec<f64>> = Vec::new();
+        let mut settled = false;
+        for _ in 0..MAX_EVENT_ITERATIONS {
+            (y, yp) = consistent(params, &y, &yp)?;
             if !observer.load(t, &y, &yp, params) {
                 return Ok(Settled { y, yp, terminated });
             }
@@ -371,6 +406,22 @@ fn settle_with(
                 settled = true;
                 break;
             }
+            let now = event_values(sys, params);
+            if let Some(first) = seen.iter().position(|v| *v == now) {
+                // The rounds cycle: search the relations that change in the cycle for
+                // values that the point they give reproduces.
+                let varying = varying_relations(sys, &seen[first..]);
+                if let Some((y1, yp1)) =
+                    search_consistent(sys, params, &varying, &mut observer, t, |p| {
+                        consistent(p, &y, &yp)
+                    })?
+                {
+                    (y, yp) = (y1, yp1);
+                    settled = true;
+                }
+                break;
+            }
+            seen.push(now);
         }
         if !settled {
             return Err(unsettled(sys, t, &changing));
@@ -473,6 +524,74 @@ fn update_discrete(
         }
     }
     Ok(())
+}
+
+/// The values of the relations and the discrete equations' variables.
+fn event_values(sys: &SimplifiedSystem, params: &[f64]) -> Vec<f64> {
+    let events = &sys.model.events;
+    (events.relations.iter().map(|r| params[r.parameter]))
+        .chain(events.equations.iter().map(|d| params[d.parameter]))
+        .collect()
+}
+
+/// The relations whose values differ among the rounds `cycle` (of [`event_values`]).
+fn varying_relations(sys: &SimplifiedSystem, cycle: &[Vec<f64>]) -> Vec<usize> {
+    (0..sys.model.events.relations.len())
+        .filter(|&k| cycle.iter().any(|v| v[k] != cycle[0][k]))
+        .collect()
+}
+
+/// The unknowns and their derivatives at a point.
+type Point = (Vec<f64>, Vec<f64>);
+
+/// Relations of a cycle searched at most (2^this combinations).
+const MAX_SEARCHED_RELATIONS: usize = 10;
+
+/// Searches values of the relations `varying` (fewest true first) whose discrete values
+/// and consistent point (from `consistent`) reproduce them: a mixed system that the
+/// rounds of the event iteration cycle around (a friction element that sticks, where
+/// either sliding direction predicts the other). Leaves `params` at the values found and
+/// returns the point, or `None` when no combination is consistent.
+fn search_consistent(
+    sys: &SimplifiedSystem,
+    params: &mut [f64],
+    varying: &[usize],
+    observer: &mut Observer,
+    t: f64,
+    consistent: impl Fn(&[f64]) -> Result<Point, Error>,
+) -> Result<Option<Point>, Error> {
+    if varying.is_empty() || varying.len() > MAX_SEARCHED_RELATIONS {
+        return Ok(None);
+    }
+    let relations = &sys.model.events.relations;
+    let mut combinations: Vec<u32> = (0..1u32 << varying.len()).collect();
+    combinations.sort_by_key(|m| m.count_ones());
+    let start = params.to_vec();
+    for m in combinations {
+        params.copy_from_slice(&start);
+        for (bit, &k) in varying.iter().enumerate() {
+            params[relations[k].parameter] = f64::from(u8::from(m & (1 << bit) != 0));
+        }
+        let mut ignored = Vec::new();
+        update_discrete(sys, params, &observer.base.clone(), t, &mut ignored)?;
+        let Ok((y, yp)) = consistent(params) else {
+            continue;
+        };
+        if !observer.load(t, &y, &yp, params) {
+            continue;
+        }
+        let reproduced = relations.iter().all(|r| {
+            let value = params[r.parameter] != 0.0;
+            r.holds(observer.base[r.crossing]) == value
+        });
+        let mut changed = Vec::new();
+        update_discrete(sys, params, &observer.base.clone(), t, &mut changed)?;
+        if reproduced && changed.is_empty() {
+            return Ok(Some((y, yp)));
+        }
+    }
+    params.copy_from_slice(&start);
+    Ok(None)
 }
 
 /// `(pre parameter, parameter)` for each `pre(v)` of a discrete variable `v`.

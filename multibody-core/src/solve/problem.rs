@@ -965,7 +965,8 @@ impl<'a> DaeProblem<'a> {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
         };
-        let mut f = CompiledFunctions::new(c, params, extended).with_crossings(sys);
+        let mut f =
+            CompiledFunctions::new(c, params, extended).with_crossings(sys, &run.events.quiet);
         let first = run.t.len();
         let mut exceeded = None;
         let mut decision = None;
@@ -1360,6 +1361,12 @@ struct Crossings<'c> {
     outputs: Vec<usize>,
     /// The relation of each.
     relations: Vec<usize>,
+    /// The shift of each: the hysteresis around the relation's current value where its
+    /// crossing function starts at zero, else none (set at the first evaluation, the
+    /// start of the integration).
+    shifts: Vec<f64>,
+    /// Whether `shifts` are set.
+    started: bool,
 }
 
 /// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
@@ -1404,7 +1411,7 @@ impl<'c> CompiledFunctions<'c> {
     /// The same functions with the crossing functions of `sys`'s event relations (from
     /// `c`'s observed function; the crossing variable `k` is its output `k`'s flat
     /// variable).
-    pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem) -> Self {
+    pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem, quiet: &[bool]) -> Self {
         // Time events stop the integration at their instants; the others are found.
         let found: Vec<usize> = (sys.model.events.relations.iter().enumerate())
             .filter(|(_, r)| r.time_event.is_none())
@@ -1413,15 +1420,47 @@ impl<'c> CompiledFunctions<'c> {
         if !found.is_empty() {
             let observed = &*self.c.observed;
             let relations = &sys.model.events.relations;
+            let shifts = found
+                .iter()
+                .map(|&k| {
+                    let r = &relations[k];
+                    let value = self.inputs[self.layout.param(r.parameter)] != 0.0;
+                    if quiet.get(k).copied().unwrap_or(false) {
+                        r.hysteresis(value, super::events::HYSTERESIS)
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            let started = false;
             self.crossings = Some(Crossings {
                 observed,
                 ws: observed.workspace(),
                 out: vec![0.0; observed.n_outputs()],
                 outputs: found.iter().map(|&k| relations[k].crossing).collect(),
                 relations: found,
+                shifts,
+                started,
             });
         }
         self
+    }
+
+    /// Keeps the hysteresis of the crossing functions that start the integration at
+    /// `(t, y, yp)` at zero; the others cross at zero exactly.
+    fn start_crossings(&mut self, t: f64, y: &[f64], yp: &[f64]) -> Result<(), EvalError> {
+        self.load(t, y, yp);
+        let Some(c) = &mut self.crossings else {
+            return Ok(());
+        };
+        c.started = true;
+        c.observed.eval(&self.inputs, &mut c.ws, &mut c.out)?;
+        for (shift, &k) in c.shifts.iter_mut().zip(&c.outputs) {
+            if c.out[k].abs() > super::events::CROSSING_ZERO {
+                *shift = 0.0;
+            }
+        }
+        Ok(())
     }
 
     /// IDA's root information `roots` (one per crossing function) per relation of
@@ -1476,11 +1515,14 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn roots(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        if self.crossings.as_ref().is_some_and(|c| !c.started) {
+            self.start_crossings(t, y, yp)?;
+        }
         self.load(t, y, yp);
         if let Some(c) = &mut self.crossings {
             c.observed.eval(&self.inputs, &mut c.ws, &mut c.out)?;
-            for (g, &k) in out.iter_mut().zip(&c.outputs) {
-                *g = c.out[k];
+            for ((g, &k), shift) in out.iter_mut().zip(&c.outputs).zip(&c.shifts) {
+                *g = c.out[k] + shift;
             }
         }
         Ok(())
