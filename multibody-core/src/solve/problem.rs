@@ -710,9 +710,8 @@ impl<'a> DaeProblem<'a> {
         let mut bridge_end: Option<f64> = None;
         let mut relaxation = BRIDGE_RELAXATION;
         if let Some(roots) = super::events::initial_samples(sys, (t0, &u0, &up0), &params) {
-            // An event at the initial time: its left limit is a segment of its own.
-            run.point_segment(t0, &u0, &up0, &params, sys)
-                .map_err(Degraded::Error)?;
+            // An event at the initial time belongs to the initialization (where
+            // `initial()` holds): the solution starts at its right limit.
             (u0, up0) = self
                 .at_event(&mut params, (t0, u0, up0), &roots, options, &mut run)
                 .map_err(Degraded::Error)?;
