@@ -372,15 +372,15 @@ fn sampled_speed_control_matches_the_discrete_time_closed_form() {
             tau[i]
         );
     }
-    // A sample at t = 0 and every period after it before t_end (the instants are
-    // multiples of the period, not sums of it).
+    // A sample at t = 0 and every period after it up to t_end, which has its own (the
+    // instants are multiples of the period, not sums of it).
     let samples: Vec<f64> = sol
         .events()
         .iter()
         .filter(|e| e.value)
         .map(|e| e.t)
         .collect();
-    assert_eq!(samples.len(), 20, "{:?}", sol.events());
+    assert_eq!(samples.len(), 21, "{:?}", sol.events());
     for (m, &t) in samples.iter().enumerate() {
         assert_eq!(t, m as f64 * period, "sample {m}");
     }
@@ -931,4 +931,55 @@ fn a_discrete_variable_without_an_equation_is_an_error_naming_it() {
         err.contains("u") && err.contains("`mode`") && err.contains("needs an equation"),
         "{err}"
     );
+}
+
+component! {
+    /// Records `x` at the end of the simulation (Modelica's `terminal()`).
+    pub struct FinalValue {
+        /// Decays from 1.
+        variable x(start = 1.0, fixed = true): Real;
+        /// `x` at the end; 0 before.
+        variable x_end(start = 0.0): Real;
+        equation {
+            der(x) = -x;
+            when terminal() {
+                x_end = x;
+            }
+        }
+    }
+}
+
+#[test]
+fn terminal_acts_once_at_the_stop_time() {
+    let mut model = System::new("final");
+    model.add("f", &FinalValue::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&options(2.0, 20))
+        .unwrap();
+    assert_eq!(sol.at("f.x_end", 1.0).unwrap(), 0.0);
+    let exact = (-2.0f64).exp();
+    assert!((sol.final_value("f.x_end").unwrap() - exact).abs() < 1e-9);
+    assert!((sol.final_value("f.x").unwrap() - exact).abs() < 1e-9);
+}
+
+#[test]
+fn a_time_event_at_the_stop_time_gives_the_last_point_its_right_limit() {
+    // A step at the stop time: the run's last point is after it, as Dymola stores it.
+    let model = system! {
+        name: "late_step";
+        step = Step { height: 2.0, start_time: 1.0 };
+        gain = Gain { k: 3.0 };
+        connect(step.y, gain.u);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+        .unwrap()
+        .solve(&options(1.0, 10))
+        .unwrap();
+    assert_eq!(sol.final_value("gain.y").unwrap(), 6.0);
+    assert_eq!(sol.events().len(), 1, "{:?}", sol.events());
+    assert_eq!(sol.events()[0].t, 1.0);
+    assert_eq!(sol.at("gain.y", 0.9).unwrap(), 0.0);
 }

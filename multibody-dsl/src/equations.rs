@@ -69,6 +69,12 @@ fn with_samples(e: &mut Expr) {
                 *e = syn::parse_quote_spanned!(c.span()=> __s.initial());
                 return;
             }
+            if call_name(&Expr::Call(c.clone())).is_some_and(|(n, _)| n == "terminal")
+                && c.args.is_empty()
+            {
+                *e = syn::parse_quote_spanned!(c.span()=> __s.terminal());
+                return;
+            }
             c.args.iter_mut().for_each(with_samples);
         }
         Expr::MethodCall(m) => {

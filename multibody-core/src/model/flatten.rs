@@ -154,6 +154,8 @@ pub struct FlatSystem {
     pub samples: Vec<Id>,
     /// The parameters of `initial()`.
     pub initials: Vec<usize>,
+    /// The parameters of `terminal()`.
+    pub terminals: Vec<usize>,
 }
 
 /// A `when` clause of a flat system (see [`WhenClause`](super::WhenClause)).
@@ -433,6 +435,7 @@ pub fn flatten(sys: &System) -> Result<FlatSystem, ModelError> {
             whens: Vec::new(),
             samples: Vec::new(),
             initials: Vec::new(),
+            terminals: Vec::new(),
         },
         var_of_sym: vec![u32::MAX; n_symbols],
         param_of_sym: vec![u32::MAX; n_symbols],
@@ -668,7 +671,9 @@ impl<'s> Flattener<'_, 's> {
                 message: "reinit(..) and terminate(..) belong inside a when clause".into(),
             });
         }
-        for &p in &s.initials {
+        for (&p, terminal) in
+            (s.initials.iter().map(|p| (p, false))).chain(s.terminals.iter().map(|p| (p, true)))
+        {
             let o = Origin::Component {
                 path: path.clone(),
                 equation: Equation { lhs: p, rhs: p },
@@ -676,7 +681,11 @@ impl<'s> Flattener<'_, 's> {
             if let Some(p) = self.translate(p, &o)
                 && let Node::Param(j) = *self.flat.arena.node(p)
             {
-                self.flat.initials.push(j as usize);
+                if terminal {
+                    self.flat.terminals.push(j as usize);
+                } else {
+                    self.flat.initials.push(j as usize);
+                }
             }
         }
         for &c in &s.samples {

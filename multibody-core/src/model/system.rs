@@ -96,6 +96,8 @@ pub struct System {
     pub samples: Vec<Expr>,
     /// The parameters that [`System::initial`] made.
     pub initials: Vec<Expr>,
+    /// The parameters that [`System::terminal`] made.
+    pub terminals: Vec<Expr>,
     /// Where the model's expressions live (shared by every system of one model).
     store: ExprStore,
 }
@@ -218,6 +220,7 @@ impl System {
             terminates: Vec::new(),
             samples: Vec::new(),
             initials: Vec::new(),
+            terminals: Vec::new(),
             overdetermined: Vec::new(),
             graph: Vec::new(),
             structural: Vec::new(),
@@ -420,6 +423,17 @@ impl System {
         let k = self.initials.len() + 1;
         let p = self.parameter(Parameter::new(format!("initial{k}"), 0.0));
         self.initials.push(p);
+        p
+    }
+
+    /// Modelica's `terminal()` for the condition of a [`when`](Self::when) clause: true
+    /// at the end of a successful simulation only (its stop time, or a `terminate`),
+    /// where the clause acts once more; the solution's last point is then its right
+    /// limit. A hidden parameter `terminalN`, 1 only there.
+    pub fn terminal(&mut self) -> Expr {
+        let k = self.terminals.len() + 1;
+        let p = self.parameter(Parameter::new(format!("terminal{k}"), 0.0));
+        self.terminals.push(p);
         p
     }
 

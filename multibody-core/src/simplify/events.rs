@@ -42,6 +42,8 @@ pub struct Events {
     pub pre: Vec<(usize, usize)>,
     /// The parameters of `initial()`: 1 at the initial event, 0 elsewhere.
     pub initial: Vec<usize>,
+    /// The parameters of `terminal()`: 1 at the terminal event, 0 elsewhere.
+    pub terminal: Vec<usize>,
     /// The discrete variables defined by equations, in the order they are evaluated
     /// (each after those it reads).
     pub equations: Vec<DiscreteEquation>,
@@ -79,6 +81,7 @@ impl Events {
             .map(|r| r.parameter)
             .chain(self.pre.iter().map(|&(p, _)| p))
             .chain(self.initial.iter().copied())
+            .chain(self.terminal.iter().copied())
             .chain(self.equations.iter().map(|d| d.parameter))
             .chain(
                 self.whens
@@ -279,6 +282,7 @@ pub(crate) fn augment(flat: &mut FlatSystem) -> Result<Events, ModelError> {
         whens,
         pre,
         initial: flat.initials.clone(),
+        terminal: flat.terminals.clone(),
         equations,
         discrete: discrete.iter().map(|&(v, p)| (v as usize, p)).collect(),
     })

@@ -119,7 +119,7 @@ fn same_instant(t: f64) -> f64 {
     1e3 * f64::EPSILON * t.abs().max(1.0)
 }
 
-/// The next time event after `t0` and before `t_end` at `params`: where the integration
+/// The next time event after `t0` and up to `t_end` at `params`: where the integration
 /// stops exactly, without root finding.
 pub(super) fn next_time_event(
     sys: &SimplifiedSystem,
@@ -133,8 +133,14 @@ pub(super) fn next_time_event(
         .relations
         .iter()
         .filter_map(|r| instant(sys, r.time_event?, params))
-        .filter(|&c| c > t0 + tol && c < t_end)
+        .filter(|&c| c > t0 + tol && c <= t_end + same_instant(t_end))
         .min_by(f64::total_cmp)
+        .map(|c| c.min(t_end))
+}
+
+/// Whether `t` is the stop time of `tspan`.
+pub(super) fn at_stop_time(tspan: (f64, f64), t: f64) -> bool {
+    (t - tspan.1).abs() <= same_instant(tspan.1)
 }
 
 /// The crossing functions of the time event at `t`: rising for the relations of time
@@ -203,6 +209,8 @@ const ACCUMULATION_INTERVAL: f64 = 1e-9;
 pub(super) struct History {
     /// Every event, in time order.
     pub events: Vec<Event>,
+    /// Whether the event being settled is the terminal one (`terminal()` holds).
+    pub terminal: bool,
     /// Per relation: whether it changed last at an event where nothing else did (no
     /// discrete variable): the next integration gives its crossing function a
     /// hysteresis while it stays at zero.
@@ -216,6 +224,7 @@ impl History {
     pub(super) fn new(sys: &SimplifiedSystem, tspan: (f64, f64)) -> Self {
         History {
             events: Vec::new(),
+            terminal: false,
             quiet: vec![false; sys.model.events.relations.len()],
             last: vec![[(f64::NEG_INFINITY, 0); 2]; sys.model.events.relations.len()],
             interval: ACCUMULATION_INTERVAL * (tspan.1 - tspan.0).abs(),
@@ -354,9 +363,15 @@ fn settle_with(
         }
     }
     let previous = pre_of_discrete(model);
-    // At the initial event (the start, t = tspan.0), initial() becomes true.
-    if t == tspan.0 {
+    // At the initial event (the start, t = tspan.0), initial() becomes true; at the
+    // terminal one, terminal().
+    if t == tspan.0 && !history.terminal {
         for &p in &model.initial {
+            params[p] = 1.0;
+        }
+    }
+    if history.terminal {
+        for &p in &model.terminal {
             params[p] = 1.0;
         }
     }

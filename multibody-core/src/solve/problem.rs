@@ -794,6 +794,12 @@ impl<'a> DaeProblem<'a> {
                         .at_event(&mut params, (t, y, yp), &roots, options, &mut run)
                         .map_err(Degraded::Error)?;
                     t0 = t;
+                    if run.terminated.is_none() && super::events::at_stop_time(self.tspan, t) {
+                        // A time event at the stop time: its right limit ends the run.
+                        run.point_segment(t, &u0, &up0, &params, sys)
+                            .map_err(Degraded::Error)?;
+                        break;
+                    }
                 }
                 SegmentEnd::Switch { t, y, yp, decision } => {
                     // The point where the selection changes ends this segment (it has
@@ -852,6 +858,10 @@ impl<'a> DaeProblem<'a> {
             }
             debug_assert_eq!(u0.len(), n);
         }
+        if !sys.model.events.terminal.is_empty() {
+            self.terminal_event(&mut params, options, &mut run)
+                .map_err(Degraded::Error)?;
+        }
         Ok(Solution::new(SolutionParts {
             model: sys.model.name.clone(),
             observed: sys.compiled.observed.clone(),
@@ -908,6 +918,31 @@ impl<'a> DaeProblem<'a> {
             run.terminated = Some(Termination { t, message });
         }
         Ok((settled.y, settled.yp))
+    }
+
+    /// The terminal event at the run's last point, where `terminal()` holds: its right
+    /// limit becomes the last point.
+    fn terminal_event(
+        &self,
+        params: &mut [f64],
+        options: &SolverOptions,
+        run: &mut Run,
+    ) -> Result<(), Error> {
+        let Some(&t) = run.t.last() else {
+            return Ok(());
+        };
+        let n = self.u0.len();
+        let k = run.t.len() - 1;
+        let (y, yp) = (
+            run.u[k * n..(k + 1) * n].to_vec(),
+            run.up[k * n..(k + 1) * n].to_vec(),
+        );
+        let roots = vec![0; self.sys.model.events.relations.len()];
+        run.events.terminal = true;
+        let terminated = run.terminated.take();
+        let (y, yp) = self.at_event(params, (t, y, yp), &roots, options, run)?;
+        run.terminated = terminated.or(run.terminated.take());
+        run.point_segment(t, &y, &yp, params, self.sys)
     }
 
     /// Integrates one segment from `start` with `params`, appending its points to
