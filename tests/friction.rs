@@ -3,11 +3,15 @@
 
 #![allow(missing_docs)]
 
-use multibody::blocks::{Constant, Ramp, Step};
+use std::f64::consts::PI;
+
+use multibody::blocks::{Constant, Pulse, Ramp, Sine, Step};
 use multibody::prelude::*;
 use multibody::rotational::{
-    BearingFriction, Brake, Clutch, Fixed, Inertia, Speed, Spring, Torque, friction_mode,
+    BearingFriction, Brake, Clutch, ElastoBacklash, Fixed, Inertia, OneWayClutch, Speed, Spring,
+    Torque, friction_mode,
 };
+use multibody::translational::{self, MassWithStopAndFriction};
 
 fn options(t_end: f64, n: usize) -> SolverOptions {
     SolverOptions {
@@ -238,4 +242,196 @@ fn brake_stops_a_spinning_inertia_and_holds_it() {
     assert_eq!(sol.at("brake.mode", 0.5).unwrap(), friction_mode::FREE);
     assert_eq!(sol.at("brake.mode", 5.0).unwrap(), friction_mode::FORWARD);
     assert_eq!(sol.at("brake.mode", 10.0).unwrap(), friction_mode::STUCK);
+}
+
+#[test]
+fn a_mass_pushed_into_its_stop_stays_there_until_pulled_back() {
+    // Without friction, 2 N push the 1 kg mass (length 0.2) from 0 to its stop at
+    // smax - L/2 = 0.9 (t = sqrt(0.9) s); it stops dead and holds the push; from t = 2 s
+    // the force pulls with 2 N and it slides back.
+    let (m, force, s_stop) = (1.0, 2.0, 0.9);
+    let model = system! {
+        name: "stop";
+        push = Step { height: -2.0 * force, offset: force, start_time: 2.0 };
+        source = translational::Force::default();
+        mass = MassWithStopAndFriction {
+            m, L: 0.2, smax: 1.0, smin: -1.0, F_prop: 0.0, F_Coulomb: 0.0, F_Stribeck: 0.0,
+        };
+        connect(push.y, source.f);
+        connect(source.flange, mass.flange_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let t_end = 3.0;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 300))
+        .unwrap();
+    let t_hit = (2.0 * m * s_stop / force).sqrt();
+    for k in 0..=300 {
+        let t = k as f64 * t_end / 300.0;
+        let s = if t < t_hit {
+            force * t * t / (2.0 * m)
+        } else if t < 2.0 {
+            s_stop
+        } else {
+            s_stop - force * (t - 2.0).powi(2) / (2.0 * m)
+        };
+        let got = sol.at("mass.s", t).unwrap();
+        assert!((got - s).abs() < 1e-7, "s({t}) = {got}, exact {s}");
+    }
+    // At the stop it is locked and its friction force (the stop's reaction) holds the push.
+    assert_eq!(sol.at("mass.locked", 1.5).unwrap(), 1.0);
+    assert!((sol.at("mass.f", 1.5).unwrap() - force).abs() < 1e-9);
+    assert!(sol.at("mass.v", 1.5).unwrap().abs() < 1e-12);
+    let hits: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|e| e.condition.starts_with("mass.s >= ") && e.value)
+        .map(|e| e.t)
+        .collect();
+    assert!((hits[0] - t_hit).abs() < 1e-8, "hits the stop at {hits:?}, exact {t_hit}");
+}
+
+#[test]
+fn stribeck_friction_holds_a_mass_until_the_force_exceeds_its_peak() {
+    // MSL Translational.Examples.Friction, stop1: 25 sin(pi t / 2) N on the resting mass;
+    // it breaks away where the force exceeds 1.001 (F_Coulomb + F_Stribeck) = 15.015 N.
+    let model = system! {
+        name: "stribeck";
+        sine = Sine { amplitude: 25.0, f: 0.25 };
+        source = translational::Force::default();
+        mass = MassWithStopAndFriction {
+            L: 1.0, smax: 25.0, smin: -25.0, m: 1.0, F_prop: 1.0, F_Coulomb: 5.0,
+            F_Stribeck: 10.0, fexp: 2.0,
+        };
+        connect(sine.y, source.f);
+        connect(source.flange, mass.flange_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+        .unwrap()
+        .solve(&options(1.0, 100))
+        .unwrap();
+    let t_break = (15.015f64 / 25.0).asin() / (PI / 2.0);
+    for k in 0..=40 {
+        let t = k as f64 * 0.01;
+        assert!(sol.at("mass.s", t).unwrap().abs() < 1e-12, "moves at {t}");
+        let held = 25.0 * (PI / 2.0 * t).sin();
+        assert!((sol.at("mass.f", t).unwrap() - held).abs() < 1e-8, "holds at {t}");
+    }
+    assert!(sol.at("mass.v", 0.5).unwrap() > 0.0);
+    assert_eq!(sol.at("mass.mode", 0.5).unwrap(), friction_mode::FORWARD);
+    let breaks: Vec<f64> = sol
+        .events()
+        .iter()
+        .filter(|e| e.condition.contains("mass.sa > 1.001") && e.value)
+        .map(|e| e.t)
+        .collect();
+    assert!((breaks[0] - t_break).abs() < 1e-8, "breaks at {breaks:?}, exact {t_break}");
+}
+
+#[test]
+fn one_way_clutch_locks_the_freewheel_and_opens_it_again() {
+    // MSL Rotational.Examples.OneWayClutch until the clutch engages at 0.3 s: 10
+    // sin(6 pi t) N.m drive the input inertia from -0.5 rad/s; the output (at rest)
+    // overruns until the input catches up at t1 (cos 6 pi t1 = 1 - 0.3 pi); locked, both
+    // turn together and the freewheel carries -5 sin(6 pi t) until that exceeds the
+    // disengaged break-away torque 1e-4 mu cgeo fn_max = 1.5e-4 N.m just after 1/6 s.
+    let model = system! {
+        name: "freewheel";
+        sine = Sine { amplitude: 10.0, f: 3.0 };
+        torque = Torque::default();
+        input = Inertia { J: 1.0, w_start: -0.5, state_priority: 20.0 };
+        clutch = OneWayClutch { peak: 25.0, fn_max: 3.0 };
+        output = Inertia { J: 1.0, w_start: 0.0, state_priority: 20.0 };
+        press = Pulse { amplitude: 1.0, width: 50.0, period: 1.3, start_time: 0.3 };
+        connect(sine.y, torque.tau);
+        connect(torque.flange, input.flange_a);
+        connect(input.flange_b, clutch.flange_a);
+        connect(clutch.flange_b, output.flange_a);
+        connect(press.y, clutch.f_normalized);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let t_end = 0.29;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 290))
+        .unwrap();
+    let omega = 6.0 * PI;
+    let t1 = (1.0 - 0.3 * PI).acos() / omega;
+    let t2 = (PI + 3e-5f64.asin()) / omega;
+    let locked_w = |t: f64| 5.0 / omega * ((omega * t1).cos() - (omega * t).cos());
+    for k in 0..=290 {
+        let t = k as f64 * t_end / 290.0;
+        let (w_in, w_out) = (sol.at("input.w", t).unwrap(), sol.at("output.w", t).unwrap());
+        let (e_in, e_out) = if t < t1 {
+            (-0.5 + 10.0 / omega * (1.0 - (omega * t).cos()), 0.0)
+        } else if t < t2 {
+            (locked_w(t), locked_w(t))
+        } else {
+            let w2 = locked_w(t2);
+            (w2 + 10.0 / omega * ((omega * t2).cos() - (omega * t).cos()), w2)
+        };
+        assert!(
+            (w_in - e_in).abs() < 1e-6 && (w_out - e_out).abs() < 1e-6,
+            "at {t}: {w_in}, {w_out}, exact {e_in}, {e_out}"
+        );
+    }
+    assert_eq!(sol.at("clutch.locked", 0.12).unwrap(), 1.0);
+    assert!((sol.at("clutch.tau", 0.12).unwrap() + 5.0 * (omega * 0.12).sin()).abs() < 1e-7);
+    assert_eq!(sol.at("clutch.locked", 0.2).unwrap(), 0.0);
+    // The output overruns at the speed it had when the freewheel opened: MSL's 0.280516.
+    assert!((sol.at("output.w", 0.25).unwrap() - 0.280516).abs() < 1e-6);
+}
+
+#[test]
+fn backlash_oscillates_with_the_closed_form_period() {
+    // MSL Rotational.Examples.Backlash without damping: an inertia of 5 kg.m2 on a
+    // spring of 2e4 N.m/rad with a backlash of pi/4, released at pi/2: contact half
+    // periods of pi/w about +-pi/8 and flights across the gap at (3 pi/8) w.
+    let (j, c, b) = (5.0, 2.0e4, PI / 4.0);
+    let model = system! {
+        name: "backlash";
+        fixed = Fixed::default();
+        backlash = ElastoBacklash { c, d: 0.0, b };
+        inertia = Inertia { J: j, phi_start: PI / 2.0, w_start: 0.0, state_priority: 20.0 };
+        connect(fixed.flange, backlash.flange_a);
+        connect(backlash.flange_b, inertia.flange_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let t_end = 0.5;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+        .unwrap()
+        .solve(&options(t_end, 1000))
+        .unwrap();
+    let w = (c / j).sqrt();
+    let (amp, half) = (3.0 * PI / 8.0, b / 2.0);
+    let v0 = amp * w;
+    let flight = b / v0;
+    let quarter = PI / (2.0 * w);
+    let period = 2.0 * PI / w + 2.0 * flight;
+    let exact = |t: f64| {
+        if t < quarter {
+            return half + amp * (w * t).cos();
+        }
+        let s = (t - quarter) % period;
+        let contact = PI / w;
+        if s < flight {
+            half - v0 * s
+        } else if s < flight + contact {
+            -half - amp * (w * (s - flight)).sin()
+        } else if s < 2.0 * flight + contact {
+            -half + v0 * (s - flight - contact)
+        } else {
+            half + amp * (w * (s - 2.0 * flight - contact)).sin()
+        }
+    };
+    for k in 0..=1000 {
+        let t = k as f64 * t_end / 1000.0;
+        let got = sol.at("inertia.phi", t).unwrap();
+        assert!((got - exact(t)).abs() < 1e-6, "phi({t}) = {got}, exact {}", exact(t));
+    }
+    // In the gap the element transmits nothing.
+    let t_gap = quarter + flight / 2.0;
+    assert_eq!(sol.at("backlash.tau", t_gap).unwrap(), 0.0);
 }

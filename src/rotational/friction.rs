@@ -305,3 +305,101 @@ component! {
         }
     }
 }
+
+component! {
+    /// A freewheel in parallel with a clutch (MSL `Rotational.Components.OneWayClutch`):
+    /// `flange_b` may overrun `flange_a` (`w_rel = w_b - w_a >= 0`, sliding against the
+    /// clutch's friction `mu_pos(w_rel) cgeo fn`), while torque that would turn it
+    /// backwards relative to `flange_a` locks the freewheel; a locked freewheel opens
+    /// once its torque exceeds `peak cgeo fn mu_pos(0)` (a tiny value without normal
+    /// force). `w_rel` must not start negative.
+    #[type_name = "Rotational.OneWayClutch"]
+    pub struct OneWayClutch {
+        /// Positive sliding friction coefficient, rows `[w (rad/s), mu (1)]` for `w >= 0`
+        /// from `w = 0`; default `[[0, 0.5]]`.
+        structural mu_pos: Vec<[f64; 2]> = vec![[0.0, 0.5]];
+        /// Peak of the friction coefficient at w = 0 (at least 1), default 1.
+        parameter peak(min = 1.0): f64 = 1.0;
+        /// Geometry constant of the friction distribution [m], default 1.
+        parameter cgeo(min = 0.0): f64 = 1.0;
+        /// Maximum normal force [N], default 1.
+        parameter fn_max(min = 0.0): f64 = 1.0;
+        /// Relative speed above which the freewheel opens whatever the torque [rad/s],
+        /// default 1e10.
+        parameter w_small: f64 = 1.0e10;
+        /// Normalized normal force of the clutch (0..1).
+        connector f_normalized: RealInput;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, w_rel, a_rel, tau };
+        /// Normal force (MSL's `fn`) [N].
+        variable f_n: Real;
+        /// Friction coefficient at `w_rel` [1].
+        variable mu: Real;
+        /// Path parameter of the characteristic [1]: the torque while locked.
+        variable sa: Real;
+        /// 1 without normal force (discrete).
+        variable free(discrete = true, start = 0.0): Real;
+        /// 1 if `w_rel = 0` and forward sliding starts (discrete).
+        variable startForward(discrete = true, start = 0.0): Real;
+        /// 1 if `w_rel = 0` and not sliding (discrete).
+        variable locked(discrete = true, start = 0.0): Real;
+        /// 1 if `w_rel = 0`, locked or starting to slide (discrete).
+        variable stuck(discrete = true, start = 0.0): Real;
+        equation {
+            assert(
+                characteristic_ok(&mu_pos),
+                "mu_pos needs rows [w, mu] from w = 0, finite, w increasing"
+            );
+            let mu0 = interpolate_at(&mu_pos, 0.0);
+            free = le(f_normalized, 0.0);
+            f_n = if_else(free, 0.0, fn_max * f_normalized);
+            let tau0 = mu0 * cgeo * f_n;
+            let tau0_max = if_else(free, 1e-4 * mu0 * cgeo * fn_max, max(peak, 1.0 + 1e-4) * tau0);
+            startForward = or(
+                and(pre(stuck), or(or(gt(sa, tau0_max), and(pre(startForward), gt(sa, tau0))), gt(w_rel, w_small))),
+                and(initial(), gt(w_rel, 0.0)),
+            );
+            locked = and(pre(stuck), not(startForward));
+            mu = interpolate(&mu_pos, w_rel, false);
+            a_rel = if_else(locked, 0.0, sa - tau0);
+            tau = if_else(locked, sa, if_else(free, 0.0, mu * cgeo * f_n));
+            stuck = or(locked, le(w_rel, 0.0));
+        }
+    }
+}
+
+component! {
+    /// A spring and damper with backlash `b` (MSL `Rotational.Components.ElastoBacklash`):
+    /// no torque within `|phi_rel - phi_rel0| <= b/2`; beyond, the spring `c` and the
+    /// damper `d`, the damping limited so that the element never pulls and its torque is
+    /// continuous at contact. Unlike MSL, the initialization uses the same
+    /// characteristic (MSL smooths the gap there).
+    #[type_name = "Rotational.ElastoBacklash"]
+    pub struct ElastoBacklash {
+        /// Spring constant [N.m/rad], default 1e5.
+        parameter c(min = 0.0): f64 = 1.0e5;
+        /// Damping constant [N.m.s/rad], default 0.
+        parameter d(min = 0.0): f64 = 0.0;
+        /// Total backlash [rad] (at least 0), default 0.
+        parameter b(min = 0.0): f64 = 0.0;
+        /// Unstretched spring angle [rad], default 0.
+        parameter phi_rel0: f64 = 0.0;
+        extends PartialCompliantWithRelativeStates { flange_a, flange_b, phi_rel, w_rel, tau };
+        /// Spring torque [N.m].
+        variable tau_c: Real;
+        /// Damping torque [N.m].
+        variable tau_d: Real;
+        equation {
+            let phi_diff = phi_rel - phi_rel0;
+            let b_max = b / 2.0;
+            let no_gap = le(abs(b), 1e-10);
+            let above = gt(phi_diff, b_max);
+            let below = lt(phi_diff, -b_max);
+            tau_c = if_else(no_gap, c * phi_diff, if_else(above, c * (phi_diff - b_max),
+                if_else(below, c * (phi_diff + b_max), 0.0)));
+            tau_d = d * w_rel;
+            let pushing = no_event(if_else(le(tau_c + tau_d, 0.0), 0.0, tau_c + min(tau_c, tau_d)));
+            let pulling = no_event(if_else(ge(tau_c + tau_d, 0.0), 0.0, tau_c + max(tau_c, tau_d)));
+            tau = if_else(no_gap, tau_c + tau_d, if_else(above, pushing, if_else(below, pulling, 0.0)));
+        }
+    }
+}

@@ -4,6 +4,9 @@
 use crate::blocks::{RealInput, RealOutput};
 use crate::prelude::*;
 
+mod friction;
+pub use friction::*;
+
 connector! {
     /// A translational flange (MSL `Flange_a` / `Flange_b`).
     pub struct Flange {
