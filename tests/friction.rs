@@ -289,7 +289,10 @@ fn a_mass_pushed_into_its_stop_stays_there_until_pulled_back() {
         .filter(|e| e.condition.starts_with("mass.s >= ") && e.value)
         .map(|e| e.t)
         .collect();
-    assert!((hits[0] - t_hit).abs() < 1e-8, "hits the stop at {hits:?}, exact {t_hit}");
+    assert!(
+        (hits[0] - t_hit).abs() < 1e-8,
+        "hits the stop at {hits:?}, exact {t_hit}"
+    );
 }
 
 #[test]
@@ -317,7 +320,10 @@ fn stribeck_friction_holds_a_mass_until_the_force_exceeds_its_peak() {
         let t = k as f64 * 0.01;
         assert!(sol.at("mass.s", t).unwrap().abs() < 1e-12, "moves at {t}");
         let held = 25.0 * (PI / 2.0 * t).sin();
-        assert!((sol.at("mass.f", t).unwrap() - held).abs() < 1e-8, "holds at {t}");
+        assert!(
+            (sol.at("mass.f", t).unwrap() - held).abs() < 1e-8,
+            "holds at {t}"
+        );
     }
     assert!(sol.at("mass.v", 0.5).unwrap() > 0.0);
     assert_eq!(sol.at("mass.mode", 0.5).unwrap(), friction_mode::FORWARD);
@@ -327,7 +333,10 @@ fn stribeck_friction_holds_a_mass_until_the_force_exceeds_its_peak() {
         .filter(|e| e.condition.contains("mass.sa > 1.001") && e.value)
         .map(|e| e.t)
         .collect();
-    assert!((breaks[0] - t_break).abs() < 1e-8, "breaks at {breaks:?}, exact {t_break}");
+    assert!(
+        (breaks[0] - t_break).abs() < 1e-8,
+        "breaks at {breaks:?}, exact {t_break}"
+    );
 }
 
 #[test]
@@ -363,14 +372,20 @@ fn one_way_clutch_locks_the_freewheel_and_opens_it_again() {
     let locked_w = |t: f64| 5.0 / omega * ((omega * t1).cos() - (omega * t).cos());
     for k in 0..=290 {
         let t = k as f64 * t_end / 290.0;
-        let (w_in, w_out) = (sol.at("input.w", t).unwrap(), sol.at("output.w", t).unwrap());
+        let (w_in, w_out) = (
+            sol.at("input.w", t).unwrap(),
+            sol.at("output.w", t).unwrap(),
+        );
         let (e_in, e_out) = if t < t1 {
             (-0.5 + 10.0 / omega * (1.0 - (omega * t).cos()), 0.0)
         } else if t < t2 {
             (locked_w(t), locked_w(t))
         } else {
             let w2 = locked_w(t2);
-            (w2 + 10.0 / omega * ((omega * t2).cos() - (omega * t).cos()), w2)
+            (
+                w2 + 10.0 / omega * ((omega * t2).cos() - (omega * t).cos()),
+                w2,
+            )
         };
         assert!(
             (w_in - e_in).abs() < 1e-6 && (w_out - e_out).abs() < 1e-6,
@@ -429,7 +444,11 @@ fn backlash_oscillates_with_the_closed_form_period() {
     for k in 0..=1000 {
         let t = k as f64 * t_end / 1000.0;
         let got = sol.at("inertia.phi", t).unwrap();
-        assert!((got - exact(t)).abs() < 1e-6, "phi({t}) = {got}, exact {}", exact(t));
+        assert!(
+            (got - exact(t)).abs() < 1e-6,
+            "phi({t}) = {got}, exact {}",
+            exact(t)
+        );
     }
     // In the gap the element transmits nothing.
     let t_gap = quarter + flight / 2.0;

@@ -579,17 +579,26 @@ fn whens(flat: &mut FlatSystem, relations: &Relations, defined: Vec<(u32, Id)>) 
     let mut memo = NodeMap::default();
     let whens = std::mem::take(&mut flat.whens);
     let mut out = Vec::with_capacity(whens.len());
+    // In the assignments, the discrete variables are read from their parameters, so
+    // that each sees the values assigned before it at the same event.
+    let mut held_map = map.clone();
+    for &(v, p) in &discrete {
+        let (x, held) = (flat.arena.var(v), flat.arena.param(p as u32));
+        held_map.insert(x, held);
+    }
+    let mut held_memo = NodeMap::default();
     for w in &whens {
         let text = flat.show(w.condition);
         let condition = flat.arena.substitute_memo(w.condition, &map, &mut memo);
-        let assignments = w
+        let assignments: Vec<(usize, Id)> = w
             .assignments
             .iter()
             .map(|&(v, e)| {
                 let p = discrete.iter().find(|&&(d, _)| d == v).expect("declared").1;
-                (p, flat.arena.substitute_memo(e, &map, &mut memo))
+                (p, flat.arena.substitute_memo(e, &held_map, &mut held_memo))
             })
             .collect();
+        let assignments = dependency_order(flat, assignments);
         let reinits = w
             .reinits
             .iter()
@@ -637,17 +646,32 @@ fn ordered_equations(
             value: flat.arena.substitute_memo(e, &map, &mut memo),
         })
         .collect();
-    // Depth-first order over the parameters each value reads.
-    let position: crate::hash::HashMap<usize, usize> = equations
+    let pairs = equations.iter().map(|d| (d.parameter, d.value)).collect();
+    dependency_order(flat, pairs)
+        .into_iter()
+        .map(|(p, _)| {
+            equations
+                .iter()
+                .find(|d| d.parameter == p)
+                .expect("one equation per parameter")
+                .clone()
+        })
+        .collect()
+}
+
+/// `(parameter, value)` pairs, each after the others whose parameters its value reads
+/// (depth first; as given where they read each other in a cycle).
+fn dependency_order(flat: &FlatSystem, pairs: Vec<(usize, Id)>) -> Vec<(usize, Id)> {
+    let position: crate::hash::HashMap<usize, usize> = pairs
         .iter()
         .enumerate()
-        .map(|(k, d)| (d.parameter, k))
+        .map(|(k, &(p, _))| (p, k))
         .collect();
-    let reads: Vec<Vec<usize>> = equations
+    let reads: Vec<Vec<usize>> = pairs
         .iter()
-        .map(|d| {
+        .map(|&(_, value)| {
             flat.arena
-                .leaves(d.value)
+                .leaves(value)
                 .iter()
                 .filter_map(|&l| match *flat.arena.node(l) {
                     Node::Param(j) => position.get(&(j as usize)).copied(),
@@ -656,8 +680,8 @@ fn ordered_equations(
                 .collect()
         })
         .collect();
-    let mut state = vec![0u8; equations.len()];
-    let mut order = Vec::with_capacity(equations.len());
+    let mut state = vec![0u8; pairs.len()];
+    let mut order = Vec::with_capacity(pairs.len());
     fn visit(k: usize, reads: &[Vec<usize>], state: &mut [u8], order: &mut Vec<usize>) {
         if state[k] != 0 {
             return;
@@ -669,8 +693,8 @@ fn ordered_equations(
         state[k] = 2;
         order.push(k);
     }
-    for k in 0..equations.len() {
+    for k in 0..pairs.len() {
         visit(k, &reads, &mut state, &mut order);
     }
-    order.into_iter().map(|k| equations[k].clone()).collect()
+    order.into_iter().map(|k| pairs[k]).collect()
 }
