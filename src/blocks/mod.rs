@@ -2,6 +2,7 @@
 //! PID), discrete (sampled) and logical (switching) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
 //! exactly one `RealOutput`.
 
+mod combi;
 mod continuous;
 mod discrete;
 mod interfaces;
@@ -11,7 +12,9 @@ mod logical;
 mod math;
 mod periodic;
 mod sources;
+mod table_file;
 
+pub use combi::*;
 pub use continuous::*;
 pub use discrete::*;
 pub use interfaces::*;
@@ -21,3 +24,4 @@ pub use logical::*;
 pub use math::*;
 pub use periodic::*;
 pub use sources::*;
+pub use table_file::read_table;
