@@ -983,3 +983,49 @@ fn a_time_event_at_the_stop_time_gives_the_last_point_its_right_limit() {
     assert_eq!(sol.events()[0].t, 1.0);
     assert_eq!(sol.at("gain.y", 0.9).unwrap(), 0.0);
 }
+
+#[test]
+fn kinematic_ptp_accelerations_integrate_to_kinematic_ptp2_positions() {
+    // Two axes of 2 and -1 rad at 1 rad/s and 2 rad/s2 from 0.2 s: the first sets the
+    // time (path speed 0.5/s, path acceleration 1/s2: 0.5 s accelerating, 1.5 s at
+    // constant speed, 0.5 s braking); integrated twice the acceleration of axis 1 is
+    // KinematicPTP2's position.
+    use multibody::blocks::{Integrator, KinematicPTP, KinematicPTP2};
+    let model = system! {
+        name: "ptp";
+        acc = KinematicPTP {
+            deltaq: vec![2.0, -1.0], qd_max: vec![1.0], qdd_max: vec![2.0], axis: 1,
+            start_time: 0.2,
+        };
+        speed = Integrator::default();
+        position = Integrator::default();
+        path = KinematicPTP2 {
+            q_begin: vec![0.0], q_end: vec![2.0, -1.0], qd_max: vec![1.0], qdd_max: vec![2.0],
+            axis: 1, start_time: 0.2,
+        };
+        connect(acc.y, speed.u);
+        connect(speed.y, position.u);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 3.0))
+        .unwrap()
+        .solve(&options(3.0, 300))
+        .unwrap();
+    for k in 0..=300 {
+        let t = k as f64 * 0.01;
+        let (p, q) = (
+            sol.at("position.y", t).unwrap(),
+            sol.at("path.q", t).unwrap(),
+        );
+        let (v, qd) = (sol.at("speed.y", t).unwrap(), sol.at("path.qd", t).unwrap());
+        assert!(
+            (p - q).abs() < 1e-8 && (v - qd).abs() < 1e-8,
+            "at {t}: {p} {q} {v} {qd}"
+        );
+    }
+    // Axis 1 arrives at -1 when axis 0 does: 0.2 + 2.5 = 2.7 s.
+    assert!((sol.at("path.q", 2.7).unwrap() + 1.0).abs() < 1e-12);
+    assert!((sol.at("path.q", 1.0).unwrap() + 0.275).abs() < 1e-12);
+    assert_eq!(sol.at("path.end_time", 1.0).unwrap(), 2.7);
+    assert_eq!(sol.at("path.moving", 2.8).unwrap(), 0.0);
+}

@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use multibody::blocks::{Constant, Pulse, Ramp, Sine, Step};
+use multibody::blocks::{Add, Constant, Pulse, Ramp, Sine, Step};
 use multibody::prelude::*;
 use multibody::rotational::{
     BearingFriction, Brake, Clutch, ElastoBacklash, Fixed, Inertia, OneWayClutch, Speed, Spring,
@@ -168,6 +168,8 @@ fn stick_slip_on_a_moving_belt_follows_the_closed_form_cycle() {
 fn clutch_locks_two_inertias_at_the_momentum_conserving_speed() {
     // Engaged at 0.5 s with a sliding torque of cgeo fn mu = 2 N.m: w1 = 10 - 2 (t -
     // 0.5), w2 = (t - 0.5); they lock at 0.5 + 10/3 s at (J1 w1 + J2 w2) / (J1 + J2).
+    // From 6 s, 9 N.m on the second: locked, the clutch would carry 3 N.m, more than
+    // peak cgeo fn mu = 2.2, so it slips forward at once with 2 N.m.
     let (j1, j2, w0) = (1.0, 2.0, 10.0);
     let model = system! {
         name: "clutch";
@@ -175,38 +177,48 @@ fn clutch_locks_two_inertias_at_the_momentum_conserving_speed() {
         b = Inertia { J: j2, w_start: 0.0, state_priority: 20.0 };
         clutch = Clutch { fn_max: 4.0, mu_pos: vec![[0.0, 0.5]], peak: 1.1 };
         press = Step { height: 1.0, start_time: 0.5 };
+        load = Step { height: 9.0, start_time: 6.0 };
+        torque = Torque::default();
         connect(a.flange_b, clutch.flange_a);
         connect(clutch.flange_b, b.flange_a);
         connect(press.y, clutch.f_normalized);
+        connect(load.y, torque.tau);
+        connect(torque.flange, b.flange_b);
     };
     let ssys = structural_simplify(&model).unwrap();
-    let t_end = 6.0;
+    let t_end = 7.0;
     let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
         .unwrap()
-        .solve(&options(t_end, 600))
+        .solve(&options(t_end, 700))
         .unwrap();
     let t_lock = 0.5 + w0 / (2.0 / j1 + 2.0 / j2);
     let w_lock = j1 * w0 / (j1 + j2);
-    for k in 0..=600 {
-        let t = k as f64 * t_end / 600.0;
+    for k in 0..=700 {
+        let t = k as f64 * t_end / 700.0;
         let s = (t.min(t_lock) - 0.5).max(0.0);
-        let (w1, w2) = (w0 - 2.0 / j1 * s, 2.0 / j2 * s);
+        let slip = (t - 6.0).max(0.0);
+        let (w1, w2) = (
+            w0 - 2.0 / j1 * s + 2.0 / j1 * slip,
+            2.0 / j2 * s + (9.0 - 2.0) / j2 * slip,
+        );
         let (g1, g2) = (sol.at("a.w", t).unwrap(), sol.at("b.w", t).unwrap());
         assert!(
             (g1 - w1).abs() < 1e-7 && (g2 - w2).abs() < 1e-7,
             "at {t}: {g1}, {g2} vs {w1}, {w2}"
         );
-        // Momentum is conserved throughout.
+        // Momentum changes only by the external torque's impulse.
         assert!(
-            (j1 * g1 + j2 * g2 - j1 * w0).abs() < 1e-7,
+            (j1 * g1 + j2 * g2 - j1 * w0 - 9.0 * slip).abs() < 1e-7,
             "momentum at {t}"
         );
     }
-    assert!((sol.at("b.w", t_end).unwrap() - w_lock).abs() < 1e-9);
+    assert!((sol.at("b.w", 5.9).unwrap() - w_lock).abs() < 1e-9);
     assert_eq!(sol.at("clutch.mode", 0.25).unwrap(), friction_mode::FREE);
     assert_eq!(sol.at("clutch.mode", 2.0).unwrap(), friction_mode::BACKWARD);
     assert_eq!(sol.at("clutch.mode", 5.0).unwrap(), friction_mode::STUCK);
     assert_eq!(sol.at("clutch.locked", 5.0).unwrap(), 1.0);
+    assert_eq!(sol.at("clutch.locked", 6.5).unwrap(), 0.0);
+    assert_eq!(sol.at("clutch.mode", 6.5).unwrap(), friction_mode::FORWARD);
     let locks = event_times(&sol, "clutch.w_relfric < 0", false);
     assert!(
         (locks[0] - t_lock).abs() < 1e-8,
@@ -217,31 +229,43 @@ fn clutch_locks_two_inertias_at_the_momentum_conserving_speed() {
 #[test]
 fn brake_stops_a_spinning_inertia_and_holds_it() {
     // Braking torque cgeo fn mu = 0.8 * 10 * 0.3 = 2.4 N.m from 1 s on an inertia of
-    // 3 kg.m2 at 6 rad/s: it stops at 1 + 6 * 3 / 2.4 s and stays stopped.
+    // 3 kg.m2 at 6 rad/s: it stops at 1 + 6 * 3 / 2.4 s and stays stopped, holding the
+    // 2 N.m that act on it from 10 s, until they grow to 3 N.m at 12 s and turn it
+    // backwards against 2.4 N.m.
     let model = system! {
         name: "brake";
         inertia = Inertia { J: 3.0, w_start: 6.0, state_priority: 20.0 };
         brake = Brake { fn_max: 10.0, mu_pos: vec![[0.0, 0.3]], cgeo: 0.8 };
         press = Step { height: 1.0, start_time: 1.0 };
+        push = Step { height: -2.0, start_time: 10.0 };
+        more = Step { height: -1.0, start_time: 12.0 };
+        sum = Add::default();
+        torque = Torque::default();
         connect(inertia.flange_b, brake.flange_a);
         connect(press.y, brake.f_normalized);
+        connect(push.y, sum.u1);
+        connect(more.y, sum.u2);
+        connect(sum.y, torque.tau);
+        connect(torque.flange, inertia.flange_a);
     };
     let ssys = structural_simplify(&model).unwrap();
-    let t_end = 12.0;
+    let t_end = 14.0;
     let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
         .unwrap()
-        .solve(&options(t_end, 240))
+        .solve(&options(t_end, 280))
         .unwrap();
     let t_stop = 1.0 + 6.0 * 3.0 / 2.4;
-    for k in 0..=240 {
-        let t = k as f64 * t_end / 240.0;
-        let w = 6.0 - 2.4 / 3.0 * (t.clamp(1.0, t_stop) - 1.0);
+    for k in 0..=280 {
+        let t = k as f64 * t_end / 280.0;
+        let w = 6.0 - 2.4 / 3.0 * (t.clamp(1.0, t_stop) - 1.0) - 0.6 / 3.0 * (t - 12.0).max(0.0);
         let got = sol.at("inertia.w", t).unwrap();
         assert!((got - w).abs() < 1e-7, "w({t}) = {got}, exact {w}");
     }
     assert_eq!(sol.at("brake.mode", 0.5).unwrap(), friction_mode::FREE);
     assert_eq!(sol.at("brake.mode", 5.0).unwrap(), friction_mode::FORWARD);
     assert_eq!(sol.at("brake.mode", 10.0).unwrap(), friction_mode::STUCK);
+    assert!((sol.at("brake.tau", 11.0).unwrap() + 2.0).abs() < 1e-9);
+    assert_eq!(sol.at("brake.mode", 13.0).unwrap(), friction_mode::BACKWARD);
 }
 
 #[test]

@@ -222,3 +222,51 @@ mod tests {
         assert!(profile(&[0.0], &[1.0], &[1.0]).is_none());
     }
 }
+
+component! {
+    /// The acceleration of one axis of a point-to-point move over the distances `deltaq`
+    /// (MSL `Blocks.Sources.KinematicPTP`): the profile of [`KinematicPTP2`], whose
+    /// integral twice is the position. A vector of one element applies to every axis.
+    #[type_name = "Blocks.KinematicPTP"]
+    pub struct KinematicPTP {
+        /// Distances to move, default `[1]`.
+        structural deltaq: Vec<f64> = vec![1.0];
+        /// Maximum speeds (positive), default `[1]`.
+        structural qd_max: Vec<f64> = vec![1.0];
+        /// Maximum accelerations (positive), default `[1]`.
+        structural qdd_max: Vec<f64> = vec![1.0];
+        /// The axis this block outputs (from 0), default 0.
+        structural axis: usize = 0;
+        /// Time the move starts [s], default 0.
+        parameter start_time: f64 = 0.0;
+        /// Reference acceleration.
+        connector y: RealOutput;
+        equation {
+            let zero = [0.0];
+            let n = axes([&deltaq, &zero, &qd_max, &qdd_max]);
+            assert(n.is_some(), "deltaq, qd_max and qdd_max need equal lengths (or 1)");
+            assert(
+                qd_max.iter().chain(&qdd_max).all(|&x| x > 0.0 && x.is_finite()),
+                "qd_max and qdd_max must be positive"
+            );
+            assert(axis < n.unwrap_or(0), "axis must be one of the vectors' axes");
+            let n = n.unwrap_or(1).max(axis + 1);
+            let dq = expanded(&deltaq, n);
+            let d = dq.get(axis).copied().unwrap_or(0.0);
+            match profile(&dq, &expanded(&qd_max, n), &expanded(&qdd_max, n)) {
+                None => {
+                    y = 0.0;
+                }
+                Some(p) => {
+                    let a = p.sdd_max;
+                    let before = lt(time, start_time);
+                    let accelerating = lt(time, start_time + p.ta);
+                    let cruising = lt(time, start_time + p.tv);
+                    let moving = lt(time, start_time + p.te);
+                    y = d * if_else(before, 0.0, if_else(accelerating, a,
+                        if_else(cruising, 0.0, if_else(moving, -a, 0.0))));
+                }
+            }
+        }
+    }
+}

@@ -191,11 +191,14 @@ fn not_evaluable(sys: &SimplifiedSystem, t: f64, clause: &str, what: &str) -> Er
 /// magnitude smaller than this).
 pub(super) const CROSSING_ZERO: f64 = 1e-8;
 
-/// A quiet relation (see [`History::quiet`]) whose crossing function starts an
-/// integration at zero changes only once it is this far beyond zero on the other side
-/// (a hysteresis: without it, a crossing function that stays at zero up to rounding, as
-/// the relative speed of a stuck friction element, would generate events at every sign
-/// change of its rounding errors).
+/// A relation read only by discrete equations (a friction element's `w_relfric > 0`)
+/// whose crossing function is at zero changes only once it is this far beyond zero on
+/// the other side, at an event or where an integration starts there (a hysteresis:
+/// without it, a crossing function that stays at zero up to rounding, as the relative
+/// speed of a stuck friction element, would generate events at every sign change of its
+/// rounding errors, and one that starts exactly at zero would not be seen to leave it).
+/// Relations that `when` clauses or the continuous equations read have none: a bouncing
+/// ball's contact is exact.
 pub(super) const HYSTERESIS: f64 = 1e-10;
 
 /// Times a relation takes the same value in quick succession before the events are
@@ -211,10 +214,6 @@ pub(super) struct History {
     pub events: Vec<Event>,
     /// Whether the event being settled is the terminal one (`terminal()` holds).
     pub terminal: bool,
-    /// Per relation: whether it changed last at an event where nothing else did (no
-    /// discrete variable): the next integration gives its crossing function a
-    /// hysteresis while it stays at zero.
-    pub quiet: Vec<bool>,
     last: Vec<[(f64, usize); 2]>,
     interval: f64,
 }
@@ -225,24 +224,8 @@ impl History {
         History {
             events: Vec::new(),
             terminal: false,
-            quiet: vec![false; sys.model.events.relations.len()],
             last: vec![[(f64::NEG_INFINITY, 0); 2]; sys.model.events.relations.len()],
             interval: ACCUMULATION_INTERVAL * (tspan.1 - tspan.0).abs(),
-        }
-    }
-
-    /// Marks the relations that changed from `before` (of [`event_values`]) to `params`
-    /// as quiet where they are read only by discrete equations and no discrete variable
-    /// changed, and as not quiet where something did.
-    fn mark_quiet(&mut self, sys: &SimplifiedSystem, before: &[f64], params: &[f64]) {
-        let after = event_values(sys, params);
-        let relations = &sys.model.events.relations;
-        let n = relations.len();
-        let discrete_changed = before[n..] != after[n..];
-        for (k, r) in relations.iter().enumerate() {
-            if before[k] != after[k] {
-                self.quiet[k] = r.only_discrete && !discrete_changed;
-            }
         }
     }
 
@@ -314,11 +297,7 @@ pub(super) fn settle(
 ) -> Result<Settled, Error> {
     let cache = specialized_for(sys, params, options, specialized.take());
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
-    let before = event_values(sys, params);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
-    if result.is_ok() {
-        history.mark_quiet(sys, &before, params);
-    }
     *specialized = cache;
     // initial() holds at the initial event only.
     for &p in &sys.model.events.initial {
@@ -504,7 +483,14 @@ fn update_relations(
         if dir != 0 && g.abs() <= CROSSING_ZERO {
             continue;
         }
-        if history.set(sys, params, k, r.holds(g), t)? {
+        // Read only by discrete equations, it has a hysteresis (see HYSTERESIS).
+        let value = params[r.parameter] != 0.0;
+        let shift = if r.only_discrete {
+            r.hysteresis(value, HYSTERESIS)
+        } else {
+            0.0
+        };
+        if history.set(sys, params, k, r.holds(g + shift), t)? {
             changing.push(r.text.clone());
         }
     }

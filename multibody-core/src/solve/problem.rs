@@ -999,8 +999,7 @@ impl<'a> DaeProblem<'a> {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
         };
-        let mut f =
-            CompiledFunctions::new(c, params, extended).with_crossings(sys, &run.events.quiet);
+        let mut f = CompiledFunctions::new(c, params, extended).with_crossings(sys);
         let first = run.t.len();
         let mut exceeded = None;
         let mut decision = None;
@@ -1445,7 +1444,7 @@ impl<'c> CompiledFunctions<'c> {
     /// The same functions with the crossing functions of `sys`'s event relations (from
     /// `c`'s observed function; the crossing variable `k` is its output `k`'s flat
     /// variable).
-    pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem, quiet: &[bool]) -> Self {
+    pub(crate) fn with_crossings(mut self, sys: &SimplifiedSystem) -> Self {
         // Time events stop the integration at their instants; the others are found.
         let found: Vec<usize> = (sys.model.events.relations.iter().enumerate())
             .filter(|(_, r)| r.time_event.is_none())
@@ -1459,7 +1458,7 @@ impl<'c> CompiledFunctions<'c> {
                 .map(|&k| {
                     let r = &relations[k];
                     let value = self.inputs[self.layout.param(r.parameter)] != 0.0;
-                    if quiet.get(k).copied().unwrap_or(false) {
+                    if r.only_discrete {
                         r.hysteresis(value, super::events::HYSTERESIS)
                     } else {
                         0.0
