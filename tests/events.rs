@@ -1029,3 +1029,34 @@ fn kinematic_ptp_accelerations_integrate_to_kinematic_ptp2_positions() {
     assert_eq!(sol.at("path.end_time", 1.0).unwrap(), 2.7);
     assert_eq!(sol.at("path.moving", 2.8).unwrap(), 0.0);
 }
+
+component! {
+    /// A mode that leaves `x` undetermined: `x = 1` until `z > 0.5`, then nothing.
+    pub struct LosesAnEquation {
+        /// Rises at 1/s.
+        variable z(start = 0.0, fixed = true): Real;
+        /// Determined only while `z < 0.5`.
+        variable x(start = 1.0): Real;
+        equation {
+            der(z) = 1.0;
+            0.0 = if_else(gt(z, 0.5), 0.0, x - 1.0);
+        }
+    }
+}
+
+#[test]
+fn a_mode_without_a_consistent_solution_is_an_error_naming_what_switched() {
+    let mut model = System::new("modes");
+    model.add("m", &LosesAnEquation::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let err = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("no consistent solution in the mode")
+            && err.contains("`m.z > 0.5` is now true"),
+        "{err}"
+    );
+}

@@ -214,6 +214,8 @@ pub(super) struct History {
     pub events: Vec<Event>,
     /// Whether the event being settled is the terminal one (`terminal()` holds).
     pub terminal: bool,
+    /// The last event's time and what it switched (see [`in_mode`]).
+    last_switch: Option<(f64, Vec<String>)>,
     last: Vec<[(f64, usize); 2]>,
     interval: f64,
 }
@@ -224,6 +226,7 @@ impl History {
         History {
             events: Vec::new(),
             terminal: false,
+            last_switch: None,
             last: vec![[(f64::NEG_INFINITY, 0); 2]; sys.model.events.relations.len()],
             interval: ACCUMULATION_INTERVAL * (tspan.1 - tspan.0).abs(),
         }
@@ -297,7 +300,12 @@ pub(super) fn settle(
 ) -> Result<Settled, Error> {
     let cache = specialized_for(sys, params, options, specialized.take());
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
+    let t = point.0;
+    let before = event_values(sys, params);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
+    if result.is_ok() {
+        history.last_switch = Some((t, switched(sys, &before, params)));
+    }
     *specialized = cache;
     // initial() holds at the initial event only.
     for &p in &sys.model.events.initial {
@@ -319,6 +327,7 @@ fn settle_with(
     history: &mut History,
 ) -> Result<Settled, Error> {
     let model = &sys.model.events;
+    let before = event_values(sys, params);
     let mut terminated = None;
     let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
     // Before the event: pre(x), and whether each when condition held.
@@ -369,11 +378,23 @@ fn settle_with(
             let (settings, extended) = ida_settings(sys, c, options);
             let mut f = CompiledFunctions::new(c, params, extended);
             ida::consistent_values(&mut f, t, y, yp, &settings, tout1).map_err(|e| {
+                // Where the new mode has no consistent solution, say what switched.
+                let switched = switched(sys, &before, params);
+                let message = if switched.is_empty() {
+                    e.message
+                } else {
+                    format!(
+                        "{}; the equations have no consistent solution in the mode this \
+                         event switched to: {}",
+                        e.message,
+                        switched.join(", ")
+                    )
+                };
                 Error::from(SolveError {
                     model: sys.model.name.clone(),
                     t: e.t,
                     flag: e.flag,
-                    message: e.message,
+                    message,
                 })
             })
         };
@@ -532,6 +553,50 @@ fn event_values(sys: &SimplifiedSystem, params: &[f64]) -> Vec<f64> {
     let events = &sys.model.events;
     (events.relations.iter().map(|r| params[r.parameter]))
         .chain(events.equations.iter().map(|d| params[d.parameter]))
+        .collect()
+}
+
+/// `error` with what the last event switched, where the integration fails at that event
+/// (the mode it switched to has no consistent solution).
+pub(super) fn in_mode(error: Error, history: &History) -> Error {
+    match (error, &history.last_switch) {
+        (Error::Solve(mut e), Some((t, switched)))
+            if !switched.is_empty() && (e.t - t).abs() <= same_instant(*t) =>
+        {
+            e.message = format!(
+                "{}; the equations have no consistent solution in the mode the event at t = \
+                 {t} switched to: {}",
+                e.message,
+                switched.join(", ")
+            );
+            Error::Solve(e)
+        }
+        (error, _) => error,
+    }
+}
+
+/// What differs between `before` (of [`event_values`]) and `params`: each relation as
+/// written with its new value, each discrete variable with its new value.
+fn switched(sys: &SimplifiedSystem, before: &[f64], params: &[f64]) -> Vec<String> {
+    let events = &sys.model.events;
+    let now = event_values(sys, params);
+    let relations = events.relations.iter().map(|r| r.text.as_str());
+    let discrete = events.equations.iter().map(|d| d.name.as_str());
+    relations
+        .clone()
+        .zip(before.iter().zip(&now))
+        .filter(|(_, (a, b))| a != b)
+        .map(|(text, (_, &b))| format!("`{text}` is now {}", b != 0.0))
+        .chain(
+            discrete
+                .zip(
+                    before[relations.len()..]
+                        .iter()
+                        .zip(&now[events.relations.len()..]),
+                )
+                .filter(|(_, (a, b))| a != b)
+                .map(|(name, (_, b))| format!("`{name}` = {b}")),
+        )
         .collect()
 }
 

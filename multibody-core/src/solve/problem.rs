@@ -760,7 +760,7 @@ impl<'a> DaeProblem<'a> {
                     &mut run,
                     watched,
                 )
-                .map_err(Degraded::Error)?;
+                .map_err(|e| Degraded::Error(super::events::in_mode(e, &run.events)))?;
             run.segments.push(segment);
             // A segment that reaches the next time event ends at that event.
             let end = match end {
@@ -827,7 +827,7 @@ impl<'a> DaeProblem<'a> {
                     }
                     let usable = bridges < MAX_BRIDGES && options.rtol * relaxation <= BRIDGE_RTOL;
                     let Some((t_fail, _, _)) = last.filter(|_| usable) else {
-                        return Err(Degraded::Error(error));
+                        return Err(Degraded::Error(super::events::in_mode(error, &run.events)));
                     };
                     bridges += 1;
                     // Start somewhat before the failure (the integrator needs room to
