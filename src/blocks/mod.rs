@@ -1,6 +1,7 @@
-//! Signal blocks (MSL `Modelica.Blocks`): sources, math, continuous (linear and
-//! PID), discrete (sampled) and logical (switching) blocks. Inputs and outputs are causal signals: a `RealInput` is connected to
-//! exactly one `RealOutput`.
+//! Signal blocks (MSL `Modelica.Blocks`): sources (also periodic, tables from rows or
+//! files, point-to-point moves), math, continuous (linear of any order, PID), discrete
+//! (sampled) and logical (switching) blocks. Inputs and outputs are causal signals: a
+//! `RealInput` is connected to exactly one `RealOutput`.
 
 mod combi;
 mod continuous;
