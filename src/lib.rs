@@ -316,13 +316,15 @@ pub use multibody_core::model::{
     Component, Connector, ConnectorHandle, Model, Named, Parameter, PathId, Real, Signal,
     StateSelect, System, TypedComponent, VarKind, Variable,
 };
+/// The linear algebra of [`LinearModel`] (`DMatrix`, `Complex`): the `nalgebra` crate.
+pub use multibody_core::nalgebra;
 pub use multibody_core::simplify::{
     DynamicStates, EventRelation, PhaseTimes, PlanarLoops, SimplifiedSystem, SimplifyOptions,
     StateCandidates, Statistics,
 };
 pub use multibody_core::solve::{
-    DaeProblem, Event, IdaStats, InitReport, LinearSolver, ProblemBuilder, Segment, Solution,
-    SolverOptions, Termination,
+    DaeProblem, Event, IdaStats, InitReport, LinearModel, LinearSolver, OperatingPoint, Pole,
+    ProblemBuilder, Segment, Solution, SolverOptions, Termination, linearize,
 };
 #[doc = include_str!("../docs/macros/component.md")]
 pub use multibody_macros::component;

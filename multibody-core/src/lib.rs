@@ -21,5 +21,7 @@ pub mod structure;
 pub use error::Error;
 pub use expr::Expr;
 pub use model::System;
+/// The linear algebra crate of [`solve::LinearModel`].
+pub use nalgebra;
 pub use simplify::{SimplifiedSystem, structural_simplify};
 pub use solve::{DaeProblem, Solution, SolverOptions};

@@ -293,6 +293,18 @@ fn eval_with_params(arena: &Arena, e: Id, params: &[f64]) -> Option<f64> {
 }
 
 impl<'a> DaeProblem<'a> {
+    /// The problem's consistent initial point (after its initialization), where
+    /// [`linearize`](super::linearize) may linearize the system: an equilibrium when
+    /// the start values make one.
+    pub fn operating_point(&self) -> super::OperatingPoint {
+        super::OperatingPoint {
+            t: self.tspan.0,
+            u: self.u0.clone(),
+            up: self.up0.clone(),
+            params: self.params.clone(),
+        }
+    }
+
     /// A problem over `tspan` with `values`: a parameter name sets that parameter; a
     /// variable name sets its start value and makes it fixed (an initial condition).
     /// Everything else keeps the model's defaults. Runs the initialization.

@@ -475,6 +475,19 @@ impl Solution {
         Ok((u, up, k))
     }
 
+    /// The solution's point at `t` (interpolated; at an event, its right limit is
+    /// reached from the time just after it), where [`linearize`](super::linearize) may
+    /// linearize the system.
+    pub fn operating_point(&self, t: f64) -> Result<super::OperatingPoint, SolutionError> {
+        let (u, up, k) = self.interpolate(t)?;
+        Ok(super::OperatingPoint {
+            t,
+            u,
+            up,
+            params: self.segments[self.segment_of(k)].params.clone(),
+        })
+    }
+
     /// The value of a variable at any time of the solved interval, interpolated between
     /// the two reported points around `t`: the unknowns by cubic Hermite interpolation
     /// with their derivatives (algebraic ones linearly), and the variable computed from
