@@ -23,7 +23,7 @@ use super::error::SolveError;
 /// or [`Solution::operating_point`](super::Solution::operating_point)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OperatingPoint {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// The unknowns, in the order of [`SimplifiedSystem::unknowns`].
     pub u: Vec<f64>,
@@ -56,9 +56,9 @@ pub struct LinearModel {
 /// An eigenvalue of a [`LinearModel`] with its natural frequency and damping.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pole {
-    /// The eigenvalue [1/s].
+    /// The eigenvalue \[1/s\].
     pub value: Complex<f64>,
-    /// Natural frequency `|value|` [rad/s].
+    /// Natural frequency `|value|` \[rad/s\].
     pub frequency: f64,
     /// Damping ratio `-Re(value) / |value|` (1 for a pole at 0).
     pub damping: f64,
