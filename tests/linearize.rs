@@ -7,12 +7,16 @@ use std::f64::consts::PI;
 
 use multibody::blocks::Constant;
 use multibody::joints::Revolute;
-use multibody::parts::Body;
+use multibody::parts::{Body, FixedTranslation};
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Torque};
 use multibody::translational::{Fixed, Mass, Spring};
 use multibody::world::World;
 use multibody::{LinearModel, OperatingPoint, linearize};
+
+#[path = "../examples/fourbar.rs"]
+#[allow(dead_code)]
+mod fourbar_example;
 
 const G: f64 = 9.80665;
 
@@ -67,13 +71,10 @@ fn a_pendulum_oscillates_below_and_falls_away_above() {
     assert!(ev.iter().all(|l| l.im.abs() < 1e-9), "{ev:?}");
 }
 
-#[test]
-fn linearization_agrees_with_central_differences_of_the_nonlinear_model() {
-    // Away from any equilibrium, with damping: A and B against central differences of
-    // the derivatives at consistent points, C and D against differences of the outputs.
-    let d = 0.1;
-    let ssys = structural_simplify(&pendulum(d)).unwrap();
-    let (lin, point) = linearized(&ssys, 0.3, 0.7);
+/// Asserts that `lin` (of `ssys` at `point`) agrees with central differences of the
+/// nonlinear model: A and B with the derivatives at consistent points with perturbed
+/// states and inputs, C and D with the outputs there (to `tol`).
+fn check_differences(ssys: &SimplifiedSystem, lin: &LinearModel, point: &OperatingPoint, tol: f64) {
     let names = ssys.unknowns();
     let index: Vec<usize> = lin
         .states
@@ -81,65 +82,141 @@ fn linearization_agrees_with_central_differences_of_the_nonlinear_model() {
         .map(|s| names.iter().position(|n| n == s).unwrap())
         .collect();
     let x0: Vec<f64> = index.iter().map(|&k| point.u[k]).collect();
-    // The derivatives and outputs at a consistent point with states x and input k.
-    let at = |x: &[f64], k: f64| {
-        let mut builder = DaeProblem::builder(&ssys, (0.0, 1e-9)).value("tau.k", k);
-        for (name, &v) in lin.states.iter().zip(x) {
+    let p0: Vec<f64> = lin
+        .inputs
+        .iter()
+        .map(|name| {
+            let problem = DaeProblem::new(ssys, &[], (0.0, 1e-9)).unwrap();
+            problem
+                .solve(&SolverOptions::default())
+                .unwrap()
+                .parameter(name.as_str())
+                .unwrap()
+        })
+        .collect();
+    let at = |x: &[f64], p: &[f64]| {
+        let mut builder = DaeProblem::builder(ssys, (0.0, 1e-9));
+        for (name, &v) in lin.states.iter().zip(x).chain(lin.inputs.iter().zip(p)) {
             builder = builder.value(name.as_str(), v);
         }
         let problem = builder.build().unwrap();
-        let p = problem.operating_point();
+        let q = problem.operating_point();
         let sol = problem.solve(&SolverOptions::default()).unwrap();
-        let y = [
-            sol.at("rev.phi", 0.0).unwrap(),
-            sol.at("damper.tau", 0.0).unwrap(),
-        ];
-        let dx: Vec<f64> = index.iter().map(|&k| p.up[k]).collect();
+        let y: Vec<f64> = lin
+            .outputs
+            .iter()
+            .map(|o| sol.at(o.as_str(), 0.0).unwrap())
+            .collect();
+        let dx: Vec<f64> = index.iter().map(|&k| q.up[k]).collect();
         (dx, y)
     };
     let h = 1e-6;
-    let n = lin.states.len();
-    for col in 0..=n {
-        let (plus, minus) = if col < n {
-            let (mut a, mut b) = (x0.clone(), x0.clone());
-            a[col] += h;
-            b[col] -= h;
-            (at(&a, 0.0), at(&b, 0.0))
+    let (n, m) = (lin.states.len(), lin.inputs.len());
+    for col in 0..n + m {
+        let (mut xa, mut xb, mut pa, mut pb) = (x0.clone(), x0.clone(), p0.clone(), p0.clone());
+        if col < n {
+            xa[col] += h;
+            xb[col] -= h;
         } else {
-            (at(&x0, h), at(&x0, -h))
-        };
+            pa[col - n] += h;
+            pb[col - n] -= h;
+        }
+        let (plus, minus) = (at(&xa, &pa), at(&xb, &pb));
         for row in 0..n {
             let fd = (plus.0[row] - minus.0[row]) / (2.0 * h);
             let exact = if col < n {
                 lin.a[(row, col)]
             } else {
-                lin.b[(row, 0)]
+                lin.b[(row, col - n)]
             };
             let what = &lin.states[row];
             assert!(
-                (fd - exact).abs() < 1e-6,
+                (fd - exact).abs() < tol,
                 "d{what}'/d[{col}]: {exact}, differences {fd}"
             );
         }
-        for out in 0..2 {
+        for out in 0..lin.outputs.len() {
             let fd = (plus.1[out] - minus.1[out]) / (2.0 * h);
             let exact = if col < n {
                 lin.c[(out, col)]
             } else {
-                lin.d[(out, 0)]
+                lin.d[(out, col - n)]
             };
             let what = &lin.outputs[out];
             assert!(
-                (fd - exact).abs() < 1e-6,
+                (fd - exact).abs() < tol,
                 "d{what}/d[{col}]: {exact}, differences {fd}"
             );
         }
     }
+}
+
+#[test]
+fn linearization_agrees_with_central_differences_of_the_nonlinear_model() {
+    // Away from any equilibrium, with damping and a torque input.
+    let d = 0.1;
+    let ssys = structural_simplify(&pendulum(d)).unwrap();
+    let (lin, point) = linearized(&ssys, 0.3, 0.7);
+    check_differences(&ssys, &lin, &point, 1e-6);
     // The torque input accelerates the axis by 1 / I: in the transfer to the speed.
     let w = lin.c.row(1).transpose() / d;
     let gain = (w.transpose() * &lin.b)[(0, 0)];
     assert!((gain.abs() - 1.0 / INERTIA).abs() < 1e-9, "{gain}");
-    assert_eq!(point.t, 0.0);
+}
+
+#[test]
+fn the_seed_four_bar_linearizes_in_its_degrees_of_freedom() {
+    // A closed loop (cut automatically): linearized in the states the simplifier chose
+    // (the two dampers' relative angles and speeds), against central differences.
+    let model = fourbar_example::fourbar();
+    let ssys = structural_simplify(&model).unwrap();
+    let problem = DaeProblem::new(&ssys, &[], (0.0, 1.0)).unwrap();
+    let point = problem.operating_point();
+    let lin = linearize(&ssys, &point, &[], &["j2.phi", "j3.phi"]).unwrap();
+    assert_eq!(lin.states.len(), 4, "{:?}", lin.states);
+    check_differences(&ssys, &lin, &point, 1e-5);
+}
+
+#[test]
+fn a_double_pendulum_has_the_closed_form_eigenfrequencies() {
+    // Point masses m on massless links l, hanging: w^2 = (g / l) (2 -+ sqrt 2).
+    let (m, l) = (1.0, 0.8);
+    let model = system! {
+        name: "double";
+        world = World::default();
+        rev1 = Revolute { n: [0.0, 0.0, 1.0] };
+        link1 = FixedTranslation { r: [l, 0.0, 0.0] };
+        mass1 = Body { m, I_11: 0.0, I_22: 0.0, I_33: 0.0 };
+        rev2 = Revolute { n: [0.0, 0.0, 1.0] };
+        link2 = FixedTranslation { r: [l, 0.0, 0.0] };
+        mass2 = Body { m, I_11: 0.0, I_22: 0.0, I_33: 0.0 };
+        connect(world.frame_b, rev1.frame_a);
+        connect(rev1.frame_b, link1.frame_a);
+        connect(link1.frame_b, mass1.frame_a);
+        connect(link1.frame_b, rev2.frame_a);
+        connect(rev2.frame_b, link2.frame_a);
+        connect(link2.frame_b, mass2.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let start = [
+        ("rev1.phi", -PI / 2.0),
+        ("rev1.w", 0.0),
+        ("rev2.phi", 0.0),
+        ("rev2.w", 0.0),
+    ];
+    let problem = DaeProblem::new(&ssys, &start, (0.0, 1.0)).unwrap();
+    let lin = linearize(&ssys, &problem.operating_point(), &[], &[]).unwrap();
+    let mut freqs: Vec<f64> = lin.poles().iter().map(|p| p.frequency).collect();
+    freqs.sort_by(f64::total_cmp);
+    let slow = (G / l * (2.0 - 2f64.sqrt())).sqrt();
+    let fast = (G / l * (2.0 + 2f64.sqrt())).sqrt();
+    assert_eq!(freqs.len(), 4);
+    for (f, exact) in freqs.iter().zip([slow, slow, fast, fast]) {
+        assert!(
+            (f - exact).abs() < 1e-9,
+            "{freqs:?}, exact {slow} and {fast}"
+        );
+    }
 }
 
 #[test]
