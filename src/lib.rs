@@ -311,6 +311,9 @@ pub mod world;
 
 pub use mechanism::{structural_simplify, structural_simplify_with};
 pub use multibody_core::Error;
+/// Controller design on linear models: pole placement and the linear-quadratic
+/// regulator.
+pub use multibody_core::control;
 pub use multibody_core::expr::Expr;
 pub use multibody_core::model::{
     Component, Connector, ConnectorHandle, Model, Named, Parameter, PathId, Real, Signal,

@@ -7,6 +7,7 @@
 //! ([`solve::DaeProblem`]), and read back by name ([`solve::Solution`]).
 
 pub mod codegen;
+pub mod control;
 mod error;
 pub mod expr;
 pub mod hash;

@@ -19,6 +19,9 @@ component! {
     pub struct Revolute {
         /// Rotation axis, resolved in `frame_a` (and `frame_b`).
         structural n: [f64; 3] = [0.0, 0.0, 1.0];
+        /// Offset of the rotation angle: the joint turns by `phi_offset + phi`, its axis
+        /// flange by `phi` [rad], default 0.
+        parameter phi_offset: f64 = 0.0;
         /// Start value of the angle \[rad\].
         structural phi_start: f64 = 0.0;
         /// Start value of the angular velocity \[rad/s\].
@@ -63,7 +66,7 @@ component! {
             a = der(w);
             if iscut && planar_cut {
                 let (ex, ey) = plane_basis(e);
-                let r_rel = planar_rotation(e, phi, w);
+                let r_rel = planar_rotation(e, phi + phi_offset, w);
                 let r_rel_a = resolve2(&frame_a.R, frame_b.r_0 - frame_a.r_0);
                 0.0 = ex.dot(r_rel_a);
                 0.0 = ey.dot(r_rel_a);
@@ -75,7 +78,7 @@ component! {
                 frame_a.t = -resolve1(&r_rel, frame_b.t);
             } else if iscut {
                 frame_b.r_0 = frame_a.r_0;
-                let r_rel = planar_rotation(e, phi, w);
+                let r_rel = planar_rotation(e, phi + phi_offset, w);
                 Vec3::zero() = equality_constraint(&absolute_rotation(&frame_a.R, &r_rel), &frame_b.R);
                 frame_a.f = -resolve1(&r_rel, frame_b.f);
                 frame_a.t = -resolve1(&r_rel, frame_b.t);
@@ -83,12 +86,12 @@ component! {
                 frame_b.r_0 = frame_a.r_0;
                 branch(frame_a.R, frame_b.R);
                 if rooted(frame_a.R) {
-                    let r_rel = planar_rotation(e, phi, w);
+                    let r_rel = planar_rotation(e, phi + phi_offset, w);
                     frame_b.R = absolute_rotation(&frame_a.R, &r_rel);
                     frame_a.f = -resolve1(&r_rel, frame_b.f);
                     frame_a.t = -resolve1(&r_rel, frame_b.t);
                 } else {
-                    let r_rel = planar_rotation(-e, phi, w);
+                    let r_rel = planar_rotation(-e, phi + phi_offset, w);
                     frame_a.R = absolute_rotation(&frame_b.R, &r_rel);
                     frame_b.f = -resolve1(&r_rel, frame_a.f);
                     frame_b.t = -resolve1(&r_rel, frame_a.t);
