@@ -327,7 +327,8 @@ pub use multibody_core::simplify::{
 };
 pub use multibody_core::solve::{
     DaeProblem, Event, IdaStats, InitReport, LinearModel, LinearSolver, OperatingPoint, Pole,
-    ProblemBuilder, Segment, Solution, SolverOptions, Termination, linearize,
+    ProblemBuilder, Segment, Solution, SolverOptions, SteadyStateOptions, Termination, linearize,
+    steady_state,
 };
 #[doc = include_str!("../docs/macros/component.md")]
 pub use multibody_macros::component;

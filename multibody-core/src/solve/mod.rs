@@ -18,6 +18,7 @@ mod options;
 mod problem;
 mod project;
 mod solution;
+mod steady;
 
 pub use builder::ProblemBuilder;
 pub use error::{InitError, SolutionError, SolveError};
@@ -26,3 +27,4 @@ pub use linearize::{LinearModel, OperatingPoint, Pole, linearize};
 pub use options::{LinearSolver, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
 pub use solution::{Event, Segment, Solution, Termination};
+pub use steady::{SteadyStateOptions, steady_state};

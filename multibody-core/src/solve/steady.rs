@@ -1,0 +1,176 @@
+//! Steady states: the states at which the derivatives vanish (or take given rates),
+//! with some variables and parameters fixed, by Gauss-Newton iteration on the states
+//! through consistent points and the exact linearization.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::Error;
+use crate::simplify::SimplifiedSystem;
+
+use super::error::SolveError;
+use super::{DaeProblem, OperatingPoint, linearize};
+
+/// Options of [`steady_state`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SteadyStateOptions {
+    /// Largest derivative error accepted (absolute, in the states' units per second);
+    /// default 1e-10.
+    pub tolerance: f64,
+    /// Iterations before giving up; default 50.
+    pub max_iterations: usize,
+}
+
+impl Default for SteadyStateOptions {
+    fn default() -> Self {
+        SteadyStateOptions {
+            tolerance: 1e-10,
+            max_iterations: 50,
+        }
+    }
+}
+
+fn failed(sys: &SimplifiedSystem, message: String) -> Error {
+    SolveError {
+        model: sys.model.name.clone(),
+        t: 0.0,
+        flag: "STEADY_STATE".into(),
+        message,
+    }
+    .into()
+}
+
+/// The steady state of `sys`: the states (of [`SimplifiedSystem::states`]) at which
+/// each state's derivative is 0, or its rate in `rates` (a steady motion; a rate of
+/// `f64::NAN` leaves it free, for a cyclic state such as a wheel's angle at constant
+/// speed, whose value is then fixed in `values`). `values` fixes parameters and variables (a fixed state is
+/// not solved for); `guesses` start the free states (else their start values). Fails
+/// naming the states when the steady state is not unique (the derivatives do not
+/// determine them) or is not found.
+pub fn steady_state(
+    sys: &SimplifiedSystem,
+    values: &[(&str, f64)],
+    guesses: &[(&str, f64)],
+    rates: &[(&str, f64)],
+    options: &SteadyStateOptions,
+) -> Result<OperatingPoint, Error> {
+    let states = sys.states();
+    for (name, _) in rates {
+        if !states.iter().any(|s| s == name) {
+            return Err(failed(
+                sys,
+                format!("`{name}` has a rate but is not a state"),
+            ));
+        }
+    }
+    let fixed = |s: &str| values.iter().any(|(n, _)| *n == s);
+    let free: Vec<usize> = (0..states.len()).filter(|&i| !fixed(&states[i])).collect();
+    let unknowns = sys.unknowns();
+    let position = |s: &str| {
+        unknowns
+            .iter()
+            .position(|u| u == s)
+            .expect("a state is an unknown")
+    };
+    // Start: the guesses, else the start values the initialization gives.
+    let start = DaeProblem::new_with_guesses(sys, values, guesses, (0.0, 1.0))?.operating_point();
+    let guess = |s: &str| guesses.iter().find(|(n, _)| *n == s).map(|&(_, v)| v);
+    let mut x: Vec<f64> = free
+        .iter()
+        .map(|&i| guess(&states[i]).unwrap_or(start.u[position(&states[i])]))
+        .collect();
+    let rate = |s: &str| rates.iter().find(|(n, _)| *n == s).map_or(0.0, |&(_, r)| r);
+    let mut last = f64::INFINITY;
+    for _ in 0..options.max_iterations {
+        let mut with_x: Vec<(&str, f64)> = values.to_vec();
+        for (&i, &v) in free.iter().zip(&x) {
+            with_x.push((states[i].as_str(), v));
+        }
+        let point =
+            DaeProblem::new_with_guesses(sys, &with_x, guesses, (0.0, 1.0))?.operating_point();
+        let lin = linearize(sys, &point, &[], &[])?;
+        // Residuals in the order of lin.states, which are sys.states().
+        let rows: Vec<usize> = (0..states.len())
+            .filter(|&i| !rate(&states[i]).is_nan())
+            .collect();
+        let r = DVector::from_iterator(
+            rows.len(),
+            rows.iter()
+                .map(|&i| point.up[position(&states[i])] - rate(&states[i])),
+        );
+        last = if r.is_empty() { 0.0 } else { r.amax() };
+        let mut jac = DMatrix::zeros(rows.len(), free.len());
+        for (col, &i) in free.iter().enumerate() {
+            let k = lin
+                .states
+                .iter()
+                .position(|s| *s == states[i])
+                .expect("a state");
+            for (row, &j) in rows.iter().enumerate() {
+                let kj = lin
+                    .states
+                    .iter()
+                    .position(|s| *s == states[j])
+                    .expect("a state");
+                jac[(row, col)] = lin.a[(kj, k)];
+            }
+        }
+        if free.len() > rows.len() {
+            return Err(failed(
+                sys,
+                format!(
+                    "the steady state is not unique: {} free states and {} derivatives to \
+                     match (fix the cyclic ones with a value)",
+                    free.len(),
+                    rows.len()
+                ),
+            ));
+        }
+        let svd = jac.clone().svd(true, true);
+        let largest = svd.singular_values.max();
+        let singular =
+            !free.is_empty() && svd.singular_values.min() <= 1e-12 * largest.max(f64::MIN_POSITIVE);
+        if singular {
+            // The direction the derivatives do not see names the states it moves.
+            let v_t = svd.v_t.as_ref().expect("asked for");
+            let direction = v_t.row(svd.singular_values.imin());
+            let names: Vec<&str> = free
+                .iter()
+                .zip(direction.iter())
+                .filter(|(_, c)| c.abs() > 0.1)
+                .map(|(&i, _)| states[i].as_str())
+                .collect();
+            return Err(failed(
+                sys,
+                if last <= options.tolerance {
+                    format!(
+                        "the steady state is not unique: the derivatives do not determine {} \
+                         (fix one of them with a value)",
+                        names.join(", ")
+                    )
+                } else {
+                    format!(
+                        "the derivatives do not determine {} at the iterate {x:?} (a point \
+                         where the forces do not change with them): give other guesses",
+                        names.join(", ")
+                    )
+                },
+            ));
+        }
+        if last <= options.tolerance {
+            return Ok(point);
+        }
+        let step = svd
+            .solve(&(-r), 1e-14 * largest)
+            .map_err(|e| failed(sys, e.to_string()))?;
+        for (xi, d) in x.iter_mut().zip(step.iter()) {
+            *xi += d;
+        }
+    }
+    Err(failed(
+        sys,
+        format!(
+            "no steady state found in {} iterations (largest derivative error {last})",
+            options.max_iterations
+        ),
+    ))
+}
