@@ -5,7 +5,9 @@
 //! placement, then a state controller from the linear-quadratic regulator, bring it
 //! upright and hold it.
 //!
-//! `cargo run --release --example inverse_pendulum` writes `inverse_pendulum.png`.
+//! `cargo run --release --example inverse_pendulum` writes `inverse_pendulum.png`, the
+//! closed loop's poles (`inverse_pendulum_poles.png`) and its Bode diagram from the
+//! torque input to the angle (`inverse_pendulum_bode.png`).
 
 use multibody::blocks::{Add3, Constant, Gain};
 use multibody::control::{lqr, place_poles};
@@ -149,6 +151,15 @@ fn main() -> Result<(), multibody::Error> {
     println!("LQR gains: k_phi = {:.3}, k_w = {:.3}", state.0, state.1);
     let closed = linearized(&ssys, state)?;
     println!("closed-loop eigenvalues (LQR): {:?}", closed.eigenvalues());
+    multibody::plot::plot_poles(&closed, "inverse_pendulum_poles.png")?;
+    multibody::plot::plot_bode(
+        &closed,
+        (0, 0),
+        (0.1, 1000.0),
+        300,
+        "inverse_pendulum_bode.png",
+    )?;
+    println!("wrote inverse_pendulum_poles.png and inverse_pendulum_bode.png");
     let falling = simulate(&ssys, (0.0, 0.0), 0.8)?;
     let with_pd = simulate(&ssys, pd, 3.0)?;
     let with_lqr = simulate(&ssys, state, 3.0)?;

@@ -344,11 +344,13 @@ pub struct ReadmeDoctests;
 pub use plot::{Figure, PlotOptions, plot, plot_figure};
 
 /// Plots of solutions: variables against time by name or handle, with their units, in
-/// panels, several solutions overlaid ([`Figure`]); and the panels underneath
-/// ([`plot_panels`](plot::plot_panels)) for curves of any data.
+/// panels, several solutions overlaid ([`Figure`]); of linear models (Bode diagrams,
+/// poles); and the panels underneath ([`plot_panels`](plot::plot_panels)) for curves of
+/// any data.
 pub mod plot {
     pub use multibody_core::plot::{
-        Figure, Panel, PlotError, PlotOptions, Series, plot, plot_figure, plot_panels,
+        Figure, Panel, PlotError, PlotOptions, Series, plot, plot_bode, plot_figure, plot_panels,
+        plot_poles,
     };
 }
 

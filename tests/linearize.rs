@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 
 use multibody::blocks::Constant;
 use multibody::joints::Revolute;
+use multibody::nalgebra::Complex;
 use multibody::parts::{Body, FixedTranslation};
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Torque};
@@ -270,4 +271,79 @@ fn unknown_inputs_and_outputs_are_errors_naming_them() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("`rev.phii` is not a variable"), "{err}");
+}
+
+#[test]
+fn a_dc_motor_has_the_closed_form_poles_and_frequency_response() {
+    // L i' = V - R i - k w, J w' = k i - d w: w / V = k / ((L s + R)(J s + d) + k^2).
+    use multibody::electrical::{EMF, Ground, Inductor, Resistor, SignalVoltage};
+    let (r, l, k, j, d) = (2.0, 0.05, 0.8, 0.1, 0.02);
+    let model = system! {
+        name: "motor";
+        v = Constant { k: 0.0 };
+        source = SignalVoltage::default();
+        resistor = Resistor { R: r };
+        inductor = Inductor { L: l };
+        emf = EMF { k };
+        ground = Ground::default();
+        rotor = multibody::rotational::Inertia { J: j };
+        friction = Damper { d };
+        housing = multibody::rotational::Fixed::default();
+        connect(v.y, source.v_ref);
+        connect(source.p, resistor.p);
+        connect(resistor.n, inductor.p);
+        connect(inductor.n, emf.p);
+        connect(emf.n, source.n);
+        connect(source.n, ground.p);
+        connect(emf.flange, rotor.flange_a);
+        connect(rotor.flange_b, friction.flange_b);
+        connect(friction.flange_a, housing.flange);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let problem = DaeProblem::new(&ssys, &[], (0.0, 1.0)).unwrap();
+    let lin = linearize(&ssys, &problem.operating_point(), &["v.k"], &["rotor.w"]).unwrap();
+    // Poles: the roots of (L s + R)(J s + d) + k^2, besides the angle's integrator.
+    let (a2, a1, a0) = (l * j, l * d + r * j, r * d + k * k);
+    let disc = a1 * a1 - 4.0 * a2 * a0;
+    let mut expected = if disc >= 0.0 {
+        vec![
+            Complex::new((-a1 - disc.sqrt()) / (2.0 * a2), 0.0),
+            Complex::new((-a1 + disc.sqrt()) / (2.0 * a2), 0.0),
+        ]
+    } else {
+        vec![
+            Complex::new(-a1 / (2.0 * a2), -(-disc).sqrt() / (2.0 * a2)),
+            Complex::new(-a1 / (2.0 * a2), (-disc).sqrt() / (2.0 * a2)),
+        ]
+    };
+    let got: Vec<Complex<f64>> = lin
+        .eigenvalues()
+        .into_iter()
+        .filter(|p| p.norm() > 1e-9)
+        .collect();
+    expected.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+    assert_eq!(got.len(), 2, "{:?}", lin.eigenvalues());
+    for (g, e) in got.iter().zip(&expected) {
+        assert!((g - e).norm() < 1e-9 * e.norm(), "{g} vs {e}");
+    }
+    // The frequency response against the closed-form transfer function, and the
+    // steady-state gain k / (R d + k^2) at low frequency.
+    for w in [0.01, 1.0, 10.0, 100.0] {
+        let s = Complex::new(0.0, w);
+        let exact = k / ((s * l + r) * (s * j + d) + k * k);
+        let h = lin.frequency_response(w).unwrap()[(0, 0)];
+        assert!(
+            (h - exact).norm() < 1e-9 * exact.norm(),
+            "at {w}: {h} vs {exact}"
+        );
+    }
+    let dc = lin.frequency_response(1e-9).unwrap()[(0, 0)];
+    assert!((dc.re - k / (r * d + k * k)).abs() < 1e-6);
+    // The Bode diagram and the poles as PNGs.
+    let dir = std::env::temp_dir().join(format!("multibody-bode-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    multibody::plot::plot_bode(&lin, (0, 0), (0.01, 1000.0), 200, dir.join("bode.png")).unwrap();
+    multibody::plot::plot_poles(&lin, dir.join("poles.png")).unwrap();
+    assert!(std::fs::metadata(dir.join("bode.png")).unwrap().len() > 1000);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -29,6 +29,7 @@
 
 mod draw;
 mod font;
+mod linear;
 mod solution;
 #[cfg(test)]
 mod tests;
@@ -38,6 +39,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 pub use font::register_fonts;
+pub use linear::{plot_bode, plot_poles};
 pub use solution::{Figure, plot, plot_figure};
 
 /// One curve: `y[i]` plotted against `t[i]`.

@@ -75,6 +75,19 @@ impl LinearModel {
         values
     }
 
+    /// The frequency response `C (i w I - A)^-1 B + D` at the angular frequency `w`
+    /// \[rad/s\] (outputs x inputs); `None` where `i w` is an eigenvalue.
+    pub fn frequency_response(&self, w: f64) -> Option<DMatrix<Complex<f64>>> {
+        let n = self.a.nrows();
+        let complex = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
+        let mut s_minus_a = -complex(&self.a);
+        for i in 0..n {
+            s_minus_a[(i, i)] += Complex::new(0.0, w);
+        }
+        let x = s_minus_a.lu().solve(&complex(&self.b))?;
+        Some(complex(&self.c) * x + complex(&self.d))
+    }
+
     /// The eigenvalues with their natural frequencies and damping ratios.
     pub fn poles(&self) -> Vec<Pole> {
         self.eigenvalues()
