@@ -73,3 +73,45 @@ fn pole_placement_and_the_regulator_hold_the_pendulum_upright() {
     let falling = example::simulate(&ssys, (0.0, 0.0), 0.8).unwrap();
     assert!(falling.final_value("rev.phi").unwrap() > 0.5);
 }
+
+#[path = "../examples/cart_pole.rs"]
+#[allow(dead_code)]
+mod cart_pole;
+
+#[test]
+fn the_regulator_brings_the_cart_pole_upright_and_back_to_its_start() {
+    let ssys = structural_simplify(&cart_pole::cart_pole()).unwrap();
+    let open = cart_pole::linearized(&ssys, &[]).unwrap();
+    assert_eq!(open.states.len(), 4, "{:?}", open.states);
+    // The cart's position and speed are free: a double eigenvalue at 0; the pendulum
+    // a real pair.
+    let ev = open.eigenvalues();
+    assert!(ev[1].norm() < 1e-9 && ev[2].norm() < 1e-9 && (ev[0] + ev[3]).norm() < 1e-9);
+    let gains = cart_pole::design(&open);
+    // The cart position does not enter the dynamics (a zero column of A), so the
+    // Riccati equation's diagonal entry gives its gain exactly: Q_s = R k_s^2.
+    let k_s = gains
+        .iter()
+        .find(|(n, _)| *n == "controller.k_s")
+        .unwrap()
+        .1;
+    assert!((k_s.abs() - (10.0f64 / 0.1).sqrt()).abs() < 1e-9, "{k_s}");
+    // The linearized closed loop has the eigenvalues of A - B K.
+    let k: Vec<f64> = gains.iter().map(|&(_, v)| v).collect();
+    let design = &open.a - &open.b * DVector::from_vec(k).transpose();
+    let mut expected: Vec<Complex<f64>> = design.complex_eigenvalues().iter().copied().collect();
+    expected.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+    let closed = cart_pole::linearized(&ssys, &gains).unwrap();
+    for (got, want) in closed.eigenvalues().iter().zip(&expected) {
+        assert!(
+            (got - want).norm() < 1e-6 && got.re < 0.0,
+            "{got} vs {want}"
+        );
+    }
+    let sol = DaeProblem::new(&ssys, &gains, (0.0, 8.0))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    assert!(sol.final_value("hinge.phi").unwrap().abs() < 1e-4);
+    assert!(sol.final_value("slider.s").unwrap().abs() < 1e-4);
+}
