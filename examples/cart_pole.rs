@@ -3,7 +3,7 @@
 //! deg. A state controller from the linear-quadratic regulator (started from a pole
 //! placement) brings the pendulum upright and the cart back to its start.
 //!
-//! `cargo run --release --example cart_pole` writes `cart_pole.png`.
+//! `cargo run --release --example cart_pole` writes `cart_pole.png` and `cart_pole.gif`.
 
 use multibody::control::{lqr, place_poles};
 use multibody::joints::{Prismatic, Revolute};
@@ -159,5 +159,13 @@ fn main() -> Result<(), multibody::Error> {
         })
         .save("cart_pole.png")?;
     println!("wrote cart_pole.png");
+    let options = RenderOptions {
+        camera: [0.0, 0.5, 3.0],
+        look_at: [0.0, 0.3, 0.0],
+        times: Some((0..=80).map(|k| 0.1 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&model, &sol, "cart_pole.gif", &options)?;
+    println!("wrote cart_pole.gif");
     Ok(())
 }

@@ -5,7 +5,8 @@
 //! placement, then a state controller from the linear-quadratic regulator, bring it
 //! upright and hold it.
 //!
-//! `cargo run --release --example inverse_pendulum` writes `inverse_pendulum.png`, the
+//! `cargo run --release --example inverse_pendulum` writes `inverse_pendulum.png` and
+//! `inverse_pendulum.gif` (the LQR run), the
 //! closed loop's poles (`inverse_pendulum_poles.png`) and its Bode diagram from the
 //! torque input to the angle (`inverse_pendulum_bode.png`).
 
@@ -186,5 +187,13 @@ fn main() -> Result<(), multibody::Error> {
         })
         .save("inverse_pendulum.png")?;
     println!("wrote inverse_pendulum.png");
+    let options = RenderOptions {
+        camera: [0.6, 0.4, 2.0],
+        look_at: [0.0, 0.25, 0.0],
+        times: Some((0..=60).map(|k| 0.05 * k as f64).collect()),
+        ..RenderOptions::default()
+    };
+    render(&model, &with_lqr, "inverse_pendulum.gif", &options)?;
+    println!("wrote inverse_pendulum.gif");
     Ok(())
 }

@@ -328,7 +328,7 @@ pub use multibody_core::simplify::{
 pub use multibody_core::solve::{
     DaeProblem, Event, IdaStats, InitReport, LinearModel, LinearSolver, OperatingPoint, Pole,
     ProblemBuilder, Segment, Solution, SolverOptions, SteadyStateOptions, Termination, linearize,
-    steady_state,
+    linearize_in, steady_state,
 };
 #[doc = include_str!("../docs/macros/component.md")]
 pub use multibody_macros::component;

@@ -347,3 +347,31 @@ fn a_dc_motor_has_the_closed_form_poles_and_frequency_response() {
     assert!(std::fs::metadata(dir.join("bode.png")).unwrap().len() > 1000);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn linearization_in_chosen_states() {
+    // With a damper, state selection takes its relative angle and speed; asked in the
+    // joint's angle and speed, the model has the pendulum's form [[0, 1], [a, b]] and
+    // the same eigenvalues.
+    let ssys = structural_simplify(&pendulum(0.1)).unwrap();
+    let (lin, point) = linearized(&ssys, 0.3, 0.0);
+    let chosen = multibody::linearize_in(
+        &ssys,
+        &point,
+        &["tau.k"],
+        &["rev.phi"],
+        &["rev.phi", "rev.w"],
+    )
+    .unwrap();
+    assert_eq!(chosen.states, vec!["rev.phi", "rev.w"]);
+    assert!(chosen.a[(0, 0)].abs() < 1e-12 && (chosen.a[(0, 1)] - 1.0).abs() < 1e-12);
+    assert!((chosen.b[(1, 0)] - 1.0 / INERTIA).abs() < 1e-9 && chosen.b[(0, 0)].abs() < 1e-12);
+    assert!((chosen.c[(0, 0)] - 1.0).abs() < 1e-12 && chosen.c[(0, 1)].abs() < 1e-12);
+    for (x, y) in lin.eigenvalues().iter().zip(chosen.eigenvalues()) {
+        assert!((x - y).norm() < 1e-9);
+    }
+    let err = multibody::linearize_in(&ssys, &point, &[], &[], &["rev.phi", "damper.phi_rel"])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("do not determine the state"), "{err}");
+}

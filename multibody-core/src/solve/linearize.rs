@@ -285,3 +285,55 @@ pub fn linearize(
         outputs: outputs.iter().map(|s| s.to_string()).collect(),
     })
 }
+
+/// [`linearize`] in the chosen `states` (variables by full name, as many as the system
+/// has states, for instance a cart's position and a pendulum's angle with their speeds
+/// rather than what state selection chose): the model in `z = T x`, `T` the
+/// linearization of the chosen variables in the system's states, which must be
+/// invertible there (the chosen variables determine the state).
+pub fn linearize_in(
+    sys: &SimplifiedSystem,
+    at: &OperatingPoint,
+    inputs: &[&str],
+    outputs: &[&str],
+    states: &[&str],
+) -> Result<LinearModel, Error> {
+    let n = sys.states().len();
+    if states.len() != n {
+        return Err(failed(
+            sys,
+            at.t,
+            format!("{} states chosen, the system has {n}", states.len()),
+        ));
+    }
+    let all: Vec<&str> = states.iter().chain(outputs).copied().collect();
+    let lin = linearize(sys, at, inputs, &all)?;
+    let t = lin.c.rows(0, n).into_owned();
+    if lin.d.rows(0, n).iter().any(|v| *v != 0.0) {
+        return Err(failed(
+            sys,
+            at.t,
+            "a chosen state depends on an input directly (it cannot be a state)".into(),
+        ));
+    }
+    let t_inv = t.clone().try_inverse().ok_or_else(|| {
+        failed(
+            sys,
+            at.t,
+            format!(
+                "the chosen variables {} do not determine the state there",
+                states.join(", ")
+            ),
+        )
+    })?;
+    let m = outputs.len();
+    Ok(LinearModel {
+        a: &t * &lin.a * &t_inv,
+        b: &t * &lin.b,
+        c: lin.c.rows(n, m) * &t_inv,
+        d: lin.d.rows(n, m).into_owned(),
+        states: states.iter().map(|s| s.to_string()).collect(),
+        inputs: lin.inputs,
+        outputs: outputs.iter().map(|s| s.to_string()).collect(),
+    })
+}

@@ -23,7 +23,7 @@ mod steady;
 pub use builder::ProblemBuilder;
 pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
-pub use linearize::{LinearModel, OperatingPoint, Pole, linearize};
+pub use linearize::{LinearModel, OperatingPoint, Pole, linearize, linearize_in};
 pub use options::{LinearSolver, SolverOptions};
 pub use problem::{DaeProblem, InitReport};
 pub use solution::{Event, Segment, Solution, Termination};
