@@ -87,6 +87,14 @@ fn a_steady_motion_with_a_cyclic_angle() {
     let names = ssys.unknowns();
     let k = names.iter().position(|n| n == angle).unwrap();
     assert!((point.up[k].abs() - 6.0).abs() < 1e-10, "{}", point.up[k]);
+    // Linearized around the steady motion: the angle's integrator (0) and the speed's
+    // decay -d / J.
+    let lin = linearize(&ssys, &point, &[], &[]).unwrap();
+    let ev = lin.eigenvalues();
+    assert!(
+        (ev[0].re + 0.25).abs() < 1e-12 && ev[1].norm() < 1e-12,
+        "{ev:?}"
+    );
 }
 
 #[test]
