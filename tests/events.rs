@@ -4,6 +4,10 @@
 
 #![allow(missing_docs)]
 
+mod common;
+
+use common::tight_options as options;
+
 use std::f64::consts::PI;
 
 use multibody::Error;
@@ -53,15 +57,6 @@ fn bilinear(t: f64, a: f64, w1: f64, w2: f64) -> f64 {
         -a * w1 / w2 * (w2 * s).sin()
     } else {
         a * (w1 * (s - PI / w2)).sin()
-    }
-}
-
-fn options(t_end: f64, n: usize) -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
-        ..SolverOptions::default()
     }
 }
 

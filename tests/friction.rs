@@ -3,6 +3,10 @@
 
 #![allow(missing_docs)]
 
+mod common;
+
+use common::tight_options as options;
+
 use std::f64::consts::PI;
 
 use multibody::blocks::{Add, Constant, Pulse, Ramp, Sine, Step};
@@ -12,15 +16,6 @@ use multibody::rotational::{
     Torque, friction_mode,
 };
 use multibody::translational::{self, MassWithStopAndFriction};
-
-fn options(t_end: f64, n: usize) -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
-        ..SolverOptions::default()
-    }
-}
 
 /// The times of the events where `condition` took `value`.
 fn event_times(sol: &Solution, condition: &str, value: bool) -> Vec<f64> {

@@ -3,19 +3,14 @@
 
 #![allow(missing_docs)]
 
+mod common;
+
+use common::tight_options as options;
+
 use multibody::blocks::{
     Constant, CriticalDamping, DiscreteTransferFunction, Init, StateSpace, TransferFunction,
 };
 use multibody::prelude::*;
-
-fn options(t_end: f64, n: usize) -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
-        ..SolverOptions::default()
-    }
-}
 
 /// Solves `model` over `(0, t_end)` and checks `signal` against `exact` at 200 points.
 fn check(

@@ -19,12 +19,9 @@ struct Profile {
     tv: f64,
     /// End of the move [s].
     te: f64,
-    /// Path speed at the end of the acceleration phase [1/s].
-    sd_peak: f64,
     /// Path parameter at the end of the acceleration phase.
     s1: f64,
-    /// Path parameter at the start of the braking phase (at the end without a phase
-    /// of constant speed).
+    /// Path parameter at the start of the braking phase.
     s2: f64,
     /// Path parameter at the end (1 up to rounding).
     s_end: f64,
@@ -59,28 +56,56 @@ fn profile(dq: &[f64], qd_max: &[f64], qdd_max: &[f64]) -> Option<Profile> {
     };
     let sd_peak = sdd_max * ta;
     let s1 = sdd_max * ta * ta / 2.0;
-    let s2 = if no_w_phase {
-        s1 + sd_peak * (te - ta) - sdd_max / 2.0 * (te - ta) * (te - ta)
-    } else {
-        s1 + sd_max * (tv - ta)
-    };
-    let s_end = if no_w_phase {
-        s2
-    } else {
-        s2 + sd_max * (te - tv) - sdd_max / 2.0 * (te - tv) * (te - tv)
-    };
+    // Braking starts at tv (= ta without a phase of constant speed) at the path speed
+    // sd_peak (= sd_max with one).
+    let s2 = s1 + sd_peak * (tv - ta);
+    let s_end = s2 + sd_peak * (te - tv) - sdd_max / 2.0 * (te - tv) * (te - tv);
     Some(Profile {
         sd_max: if no_w_phase { sd_peak } else { sd_max },
         sdd_max,
         ta,
         tv,
         te,
-        sd_peak,
         s1,
         s2,
         s_end,
         no_w_phase,
     })
+}
+
+/// The path parameter `s`, its speed and its acceleration at `time` for the move of
+/// `p` from `start`, and whether it still moves (1 or 0): expressions whose phase
+/// changes (accelerating, at constant speed, braking, arrived) are time events.
+fn path(p: &Profile, time: Expr, start: Expr) -> [Expr; 4] {
+    let t = time - start;
+    let (a, v) = (p.sdd_max, p.sd_max);
+    let (cruise, braking) = (t - p.ta, t - p.tv);
+    let before = lt(time, start);
+    let accelerating = lt(time, start + p.ta);
+    let cruising = lt(time, start + p.tv);
+    let moving = lt(time, start + p.te);
+    let phases = |acc: Expr, cru: Expr, brk: Expr, end: f64| {
+        if_else(
+            before,
+            0.0,
+            if_else(
+                accelerating,
+                acc,
+                if_else(cruising, cru, if_else(moving, brk, end)),
+            ),
+        )
+    };
+    [
+        phases(
+            a / 2.0 * t * t,
+            p.s1 + v * cruise,
+            p.s2 + v * braking - a / 2.0 * braking * braking,
+            p.s_end,
+        ),
+        phases(a * t, Expr::from(v), v - a * braking, 0.0),
+        phases(Expr::from(a), Expr::from(0.0), Expr::from(-a), 0.0),
+        if_else(moving, 1.0, 0.0),
+    ]
 }
 
 /// Expands a vector of one element to `n`.
@@ -153,41 +178,12 @@ component! {
                     moving = 0.0;
                 }
                 Some(p) => {
-                    let t = time - start_time;
-                    let (a, peak) = (p.sdd_max, p.sd_peak);
-                    let braking = if p.no_w_phase { t - p.ta } else { t - p.tv };
-                    // Phases: before, accelerating, cruising (not without one), braking,
-                    // arrived.
-                    let before = lt(time, start_time);
-                    let accelerating = lt(time, start_time + p.ta);
-                    let cruising = lt(time, start_time + p.tv);
-                    let moving_now = lt(time, start_time + p.te);
-                    let (s, sd, sdd) = if p.no_w_phase {
-                        (
-                            if_else(before, 0.0, if_else(accelerating, a / 2.0 * t * t,
-                                if_else(moving_now, p.s1 + peak * braking - a / 2.0 * braking * braking, p.s2))),
-                            if_else(before, 0.0, if_else(accelerating, a * t,
-                                if_else(moving_now, peak - a * braking, 0.0))),
-                            if_else(before, 0.0, if_else(accelerating, a, if_else(moving_now, -a, 0.0))),
-                        )
-                    } else {
-                        let cruise = t - p.ta;
-                        (
-                            if_else(before, 0.0, if_else(accelerating, a / 2.0 * t * t,
-                                if_else(cruising, p.s1 + p.sd_max * cruise,
-                                    if_else(moving_now, p.s2 + p.sd_max * braking - a / 2.0 * braking * braking,
-                                        p.s_end)))),
-                            if_else(before, 0.0, if_else(accelerating, a * t,
-                                if_else(cruising, p.sd_max, if_else(moving_now, p.sd_max - a * braking, 0.0)))),
-                            if_else(before, 0.0, if_else(accelerating, a,
-                                if_else(cruising, 0.0, if_else(moving_now, -a, 0.0)))),
-                        )
-                    };
+                    let [s, sd, sdd, moving_now] = path(&p, time, start_time.into());
                     q = q0 + d * s;
                     qd = d * sd;
                     qdd = d * sdd;
                     end_time = start_time + p.te;
-                    moving = if d.abs() > EPS { if_else(moving_now, 1.0, 0.0) } else { Expr::from(0.0) };
+                    moving = if d.abs() > EPS { moving_now } else { Expr::from(0.0) };
                 }
             }
         }
@@ -258,13 +254,8 @@ component! {
                     y = 0.0;
                 }
                 Some(p) => {
-                    let a = p.sdd_max;
-                    let before = lt(time, start_time);
-                    let accelerating = lt(time, start_time + p.ta);
-                    let cruising = lt(time, start_time + p.tv);
-                    let moving = lt(time, start_time + p.te);
-                    y = d * if_else(before, 0.0, if_else(accelerating, a,
-                        if_else(cruising, 0.0, if_else(moving, -a, 0.0))));
+                    let [_, _, sdd, _] = path(&p, time, start_time.into());
+                    y = d * sdd;
                 }
             }
         }

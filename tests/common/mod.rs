@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use multibody::Solution;
+use multibody::{Solution, SolverOptions};
 
 /// The directory of the MSL reference trajectories kept in this repository
 /// (`tests/data/msl`, with their provenance and licence in its README).
@@ -149,4 +149,14 @@ pub fn assert_in_tube(model: &str, sol: &Solution, signals: &[&str]) {
         bad.is_empty(),
         "{model}: signals outside the 2e-3 tube: {bad:#?}"
     );
+}
+
+/// Tight tolerances (rtol 1e-10, atol 1e-12) with `n + 1` output times over `(0, t_end)`.
+pub fn tight_options(t_end: f64, n: usize) -> SolverOptions {
+    SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
+        ..SolverOptions::default()
+    }
 }

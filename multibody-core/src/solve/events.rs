@@ -303,9 +303,10 @@ pub(super) fn settle(
     let t = point.0;
     let before = event_values(sys, params);
     let result = settle_with(c, sys, tspan, params, point, roots, options, history);
-    if result.is_ok() {
-        history.last_switch = Some((t, switched(sys, &before, params)));
-    }
+    let switch = switched(sys, &before, params);
+    // Where the new mode has no consistent solution, say what switched.
+    let result = result.map_err(|e| with_switch(e, t, &switch));
+    history.last_switch = Some((t, switch));
     *specialized = cache;
     // initial() holds at the initial event only.
     for &p in &sys.model.events.initial {
@@ -327,7 +328,6 @@ fn settle_with(
     history: &mut History,
 ) -> Result<Settled, Error> {
     let model = &sys.model.events;
-    let before = event_values(sys, params);
     let mut terminated = None;
     let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
     // Before the event: pre(x), and whether each when condition held.
@@ -378,23 +378,11 @@ fn settle_with(
             let (settings, extended) = ida_settings(sys, c, options);
             let mut f = CompiledFunctions::new(c, params, extended);
             ida::consistent_values(&mut f, t, y, yp, &settings, tout1).map_err(|e| {
-                // Where the new mode has no consistent solution, say what switched.
-                let switched = switched(sys, &before, params);
-                let message = if switched.is_empty() {
-                    e.message
-                } else {
-                    format!(
-                        "{}; the equations have no consistent solution in the mode this \
-                         event switched to: {}",
-                        e.message,
-                        switched.join(", ")
-                    )
-                };
                 Error::from(SolveError {
                     model: sys.model.name.clone(),
                     t: e.t,
                     flag: e.flag,
-                    message,
+                    message: e.message,
                 })
             })
         };
@@ -559,10 +547,18 @@ fn event_values(sys: &SimplifiedSystem, params: &[f64]) -> Vec<f64> {
 /// `error` with what the last event switched, where the integration fails at that event
 /// (the mode it switched to has no consistent solution).
 pub(super) fn in_mode(error: Error, history: &History) -> Error {
-    match (error, &history.last_switch) {
-        (Error::Solve(mut e), Some((t, switched)))
-            if !switched.is_empty() && (e.t - t).abs() <= same_instant(*t) =>
-        {
+    match &history.last_switch {
+        Some((t, switched)) if matches!(&error, Error::Solve(e) if (e.t - t).abs() <= same_instant(*t)) => {
+            with_switch(error, *t, switched)
+        }
+        _ => error,
+    }
+}
+
+/// `error` (of the solver) with what the event at `t` switched, if anything.
+fn with_switch(error: Error, t: f64, switched: &[String]) -> Error {
+    match error {
+        Error::Solve(mut e) if !switched.is_empty() => {
             e.message = format!(
                 "{}; the equations have no consistent solution in the mode the event at t = \
                  {t} switched to: {}",
@@ -571,7 +567,7 @@ pub(super) fn in_mode(error: Error, history: &History) -> Error {
             );
             Error::Solve(e)
         }
-        (error, _) => error,
+        error => error,
     }
 }
 

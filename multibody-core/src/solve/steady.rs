@@ -64,21 +64,37 @@ pub fn steady_state(
     }
     let fixed = |s: &str| values.iter().any(|(n, _)| *n == s);
     let free: Vec<usize> = (0..states.len()).filter(|&i| !fixed(&states[i])).collect();
-    let unknowns = sys.unknowns();
-    let position = |s: &str| {
-        unknowns
+    // Each state's unknown (the states are the differential unknowns, in order: the
+    // states of the linearization too).
+    let unknown: Vec<usize> = (0..sys.sorted.mass_matrix_diagonal.len())
+        .filter(|&k| sys.sorted.mass_matrix_diagonal[k] == 1.0)
+        .collect();
+    let rate = |i: usize| {
+        rates
             .iter()
-            .position(|u| u == s)
-            .expect("a state is an unknown")
+            .find(|(n, _)| *n == states[i])
+            .map_or(0.0, |&(_, r)| r)
     };
+    // The derivatives to match: those without a free rate.
+    let rows: Vec<usize> = (0..states.len()).filter(|&i| !rate(i).is_nan()).collect();
+    if free.len() > rows.len() {
+        return Err(failed(
+            sys,
+            format!(
+                "the steady state is not unique: {} free states and {} derivatives to \
+                 match (fix the cyclic ones with a value)",
+                free.len(),
+                rows.len()
+            ),
+        ));
+    }
     // Start: the guesses, else the start values the initialization gives.
     let start = DaeProblem::new_with_guesses(sys, values, guesses, (0.0, 1.0))?.operating_point();
     let guess = |s: &str| guesses.iter().find(|(n, _)| *n == s).map(|&(_, v)| v);
     let mut x: Vec<f64> = free
         .iter()
-        .map(|&i| guess(&states[i]).unwrap_or(start.u[position(&states[i])]))
+        .map(|&i| guess(&states[i]).unwrap_or(start.u[unknown[i]]))
         .collect();
-    let rate = |s: &str| rates.iter().find(|(n, _)| *n == s).map_or(0.0, |&(_, r)| r);
     let mut last = f64::INFINITY;
     for _ in 0..options.max_iterations {
         let mut with_x: Vec<(&str, f64)> = values.to_vec();
@@ -88,44 +104,15 @@ pub fn steady_state(
         let point =
             DaeProblem::new_with_guesses(sys, &with_x, guesses, (0.0, 1.0))?.operating_point();
         let lin = linearize(sys, &point, &[], &[])?;
-        // Residuals in the order of lin.states, which are sys.states().
-        let rows: Vec<usize> = (0..states.len())
-            .filter(|&i| !rate(&states[i]).is_nan())
-            .collect();
         let r = DVector::from_iterator(
             rows.len(),
-            rows.iter()
-                .map(|&i| point.up[position(&states[i])] - rate(&states[i])),
+            rows.iter().map(|&i| point.up[unknown[i]] - rate(i)),
         );
         last = if r.is_empty() { 0.0 } else { r.amax() };
-        let mut jac = DMatrix::zeros(rows.len(), free.len());
-        for (col, &i) in free.iter().enumerate() {
-            let k = lin
-                .states
-                .iter()
-                .position(|s| *s == states[i])
-                .expect("a state");
-            for (row, &j) in rows.iter().enumerate() {
-                let kj = lin
-                    .states
-                    .iter()
-                    .position(|s| *s == states[j])
-                    .expect("a state");
-                jac[(row, col)] = lin.a[(kj, k)];
-            }
-        }
-        if free.len() > rows.len() {
-            return Err(failed(
-                sys,
-                format!(
-                    "the steady state is not unique: {} free states and {} derivatives to \
-                     match (fix the cyclic ones with a value)",
-                    free.len(),
-                    rows.len()
-                ),
-            ));
-        }
-        let svd = jac.clone().svd(true, true);
+        let jac = DMatrix::from_fn(rows.len(), free.len(), |row, col| {
+            lin.a[(rows[row], free[col])]
+        });
+        let svd = jac.svd(true, true);
         let largest = svd.singular_values.max();
         let singular =
             !free.is_empty() && svd.singular_values.min() <= 1e-12 * largest.max(f64::MIN_POSITIVE);
