@@ -71,6 +71,15 @@ pub fn check_balance(flat: &FlatSystem) -> Result<(), ModelError> {
 /// Input signals that nothing outside their component sets: in no connection and in no
 /// equation of another component (their component only reads them).
 fn unconnected_inputs(flat: &FlatSystem) -> Vec<String> {
+    unconnected_input_variables(flat)
+        .into_iter()
+        .map(|v| flat.variables[v].name.to_string())
+        .collect()
+}
+
+/// The indices of the input signals that nothing outside their component sets (see
+/// [`unconnected_inputs`]), in declaration order.
+pub(crate) fn unconnected_input_variables(flat: &FlatSystem) -> Vec<usize> {
     use super::flatten::Origin;
     use super::variable::VarKind;
     /// The component that owns a connector variable: its path without the connector
@@ -97,11 +106,7 @@ fn unconnected_inputs(flat: &FlatSystem) -> Vec<String> {
             }
         }
     }
-    inputs
-        .into_iter()
-        .filter(|&v| !set[v])
-        .map(|v| flat.variables[v].name.to_string())
-        .collect()
+    inputs.into_iter().filter(|&v| !set[v]).collect()
 }
 
 /// Evaluates parameter bindings (expressions of other parameters) in dependency order;

@@ -116,6 +116,14 @@ pub enum ModelError {
         /// Where it is used (an equation's text).
         place: String,
     },
+    /// A variable named as an input of the model that cannot be one.
+    #[error("input `{name}` {message}")]
+    InvalidInput {
+        /// The variable's full path.
+        name: String,
+        /// Why it cannot be an input.
+        message: String,
+    },
     /// A parameter has no value and is not computed at initialization.
     #[error("parameter `{0}` has no value")]
     ParameterWithoutValue(String),
@@ -163,8 +171,9 @@ fn unbalanced_message(
         format!("model `{model}` is not balanced: {equations} equations for {unknowns} unknowns");
     if !inputs.is_empty() {
         m.push_str(&format!(
-            "\n  inputs connected to nothing: {} (connect an output to each, or give it an \
-             equation)",
+            "\n  inputs connected to nothing: {} (connect an output to each, give it an \
+             equation, or make it an input of the model: SimplifyOptions::inputs or \
+             open_inputs)",
             crate::names::list(inputs, 12)
         ));
     }

@@ -72,6 +72,12 @@ pub enum Origin {
         /// The variable's full name.
         variable: String,
     },
+    /// An input of the model is the parameter of its name (see
+    /// [`SimplifyOptions::inputs`](crate::simplify::SimplifyOptions::inputs)).
+    Input {
+        /// The input's full name.
+        variable: String,
+    },
     /// A start value declared `fixed` (initialization only).
     FixedStart {
         /// The variable.
@@ -240,6 +246,7 @@ impl FlatSystem {
             Origin::FixedStart { var } => format!("fixed start value of {var}"),
             Origin::DynamicStates { text } => format!("dynamic state selection: {text}"),
             Origin::Crossing { relation } => format!("crossing function of {relation}"),
+            Origin::Input { variable } => format!("{variable} is an input of the model"),
             Origin::Discrete { variable } => {
                 format!("{variable} holds the value it took at the last event")
             }

@@ -15,6 +15,7 @@ mod typed;
 mod variable;
 mod vector;
 
+pub(crate) use balance::unconnected_input_variables;
 pub use balance::{check_balance, evaluate_bindings};
 pub use error::ModelError;
 pub use flatten::{

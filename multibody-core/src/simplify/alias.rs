@@ -45,7 +45,9 @@ enum Pattern {
 
 /// Recognizes `k a + k' b = 0` with `|k| = |k'|`, and `k a + c = 0` with `c` free of
 /// unknowns and time.
-fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
+/// Parameters marked in `varying` (the model's inputs) change in time: they make no
+/// constant.
+fn pattern(arena: &mut Arena, r: Id, varying: &[bool]) -> Option<Pattern> {
     // Read the node in place (no clone): most equations match neither pattern.
     let (alias, single) = match arena.node(r) {
         Node::Var(i) => return Some(Pattern::Constant(*i, arena.zero())),
@@ -88,6 +90,9 @@ fn pattern(arena: &mut Arena, r: Id) -> Option<Pattern> {
     {
         return None;
     }
+    if varying.iter().any(|&v| v) && varies(arena, r, varying) {
+        return None;
+    }
     let rest = arena.linear_combination(0.0, &[(1.0, r), (-k, x)]);
     let v = arena.scale(-1.0 / k, rest);
     Some(Pattern::Constant(a, v))
@@ -103,6 +108,13 @@ pub(crate) fn is_parameter_expression(arena: &Arena, e: Id) -> bool {
             .iter()
             .all(|&l| matches!(arena.node(l), Node::Param(_))),
     }
+}
+
+/// Whether `e` reads a parameter marked in `varying`.
+fn varies(arena: &Arena, e: Id, varying: &[bool]) -> bool {
+    arena.leaves(e).iter().any(
+        |&l| matches!(arena.node(l), Node::Param(j) if varying.get(*j as usize) == Some(&true)),
+    )
 }
 
 /// Union-find with the sign of each member relative to its parent.
@@ -147,6 +159,8 @@ impl SignedSets {
 struct Found {
     sets: SignedSets,
     constant: Vec<Option<Id>>,
+    /// Per parameter: whether it changes in time (an input of the model).
+    varying: Vec<bool>,
 }
 
 impl Found {
@@ -168,7 +182,7 @@ impl Found {
                 continue;
             }
             let r = flat.equations[e].residual;
-            match pattern(&mut flat.arena, r) {
+            match pattern(&mut flat.arena, r, &self.varying) {
                 Some(Pattern::Alias(a, b, s)) if aliases => {
                     let (ra, sa) = self.sets.find(a);
                     let (rb, sb) = self.sets.find(b);
@@ -351,10 +365,15 @@ fn occurrences(flat: &FlatSystem, removed: &[bool]) -> Vec<Vec<u32>> {
 /// the substituted equations until it finds nothing more, so such a frame is a constant
 /// (as a frame merely translated from a constant one is after one pass), and no
 /// equation is left that defines a constant orientation entry.
-pub(crate) fn eliminate_aliases(flat: &mut FlatSystem) -> Aliases {
+pub(crate) fn eliminate_aliases(flat: &mut FlatSystem, inputs: &[usize]) -> Aliases {
     let nv = flat.variables.len();
     let ne = flat.equations.len();
+    let mut varying = vec![false; flat.parameters.len()];
+    for &j in inputs {
+        varying[j] = true;
+    }
     let mut found = Found {
+        varying,
         sets: SignedSets {
             parent: (0..nv as u32).collect(),
             sign: vec![1.0; nv],

@@ -43,6 +43,23 @@ pub enum SimplifyError {
         /// What went wrong.
         message: String,
     },
+    /// Index reduction has to differentiate an equation that reads an input of the
+    /// model, whose derivative is not known (an input given as a function of time).
+    #[error(
+        "model `{model}`: index reduction has to differentiate `{equation}`, which reads the \
+         input `{input}`, but an input's derivative is not known. Let the input drive a force \
+         or a torque rather than a position or a speed, or pass it through a filter whose \
+         states give its derivatives (blocks::CriticalDamping) and make the filter's input \
+         the model's input"
+    )]
+    DifferentiatedInput {
+        /// Model name.
+        model: String,
+        /// The input, by full path.
+        input: String,
+        /// The equation index reduction differentiates.
+        equation: String,
+    },
     /// Code generation failed (an internal error: please report it).
     #[error("model `{model}`: code generation failed: {message}")]
     Codegen {

@@ -27,6 +27,7 @@ pub mod dynamic_states;
 mod error;
 mod evaluate;
 pub mod events;
+mod inputs;
 mod pre_eliminate;
 pub(crate) mod reduce;
 mod reroot;
@@ -86,6 +87,19 @@ pub struct SimplifyOptions {
     /// one degrades (Mattsson, Olsson and Elmqvist 2000; default:
     /// [`DynamicStates::WhenNeeded`]).
     pub dynamic_state_selection: DynamicStates,
+    /// Variables that are the model's inputs, by full path (`"torque.tau"`): each
+    /// becomes a parameter of the compiled model (of the same name) whose value a problem
+    /// gives, as a constant ([`ProblemBuilder::value`](crate::solve::ProblemBuilder::value))
+    /// or as a function of time
+    /// ([`ProblemBuilder::input`](crate::solve::ProblemBuilder::input)), without
+    /// compiling again; [`linearize`](crate::solve::linearize) takes them as inputs.
+    /// Usually signal inputs connected to nothing; any unknown can be one, so long as
+    /// index reduction does not need its derivative (default: none).
+    pub inputs: Vec<String>,
+    /// Makes every signal input connected to nothing an input of the model, as if named
+    /// in [`Self::inputs`] (without it such an input leaves the model unbalanced, an
+    /// error that names it; default: false).
+    pub open_inputs: bool,
 }
 
 /// When a model gets dynamic states (see [`SimplifyOptions::dynamic_state_selection`]).
@@ -109,6 +123,8 @@ impl Default for SimplifyOptions {
             evaluate_parameters: false,
             planar_loops: PlanarLoops::default(),
             dynamic_state_selection: DynamicStates::WhenNeeded,
+            inputs: Vec::new(),
+            open_inputs: false,
         }
     }
 }
@@ -194,6 +210,8 @@ struct FlatStage {
     model: crate::model::FlatSystem,
     evaluated_parameters: Vec<bool>,
     events: Events,
+    /// The parameters that are the model's inputs.
+    inputs: Vec<usize>,
 }
 
 /// Stage 1: flattening, the balance check, the evaluation of parameters and the
@@ -202,6 +220,7 @@ fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage,
     let mut flat = flatten(model)?;
     let mut evaluated_parameters =
         evaluate::evaluate_parameters(&mut flat, options.evaluate_parameters);
+    let inputs = inputs::augment(&mut flat, options)?;
     let events = events::augment(&mut flat)?;
     check_balance(&flat)?;
     evaluated_parameters.resize(flat.parameters.len(), false);
@@ -209,6 +228,7 @@ fn flatten_stage(model: &System, options: &SimplifyOptions) -> Result<FlatStage,
         model: flat,
         evaluated_parameters,
         events,
+        inputs,
     })
 }
 
@@ -234,12 +254,13 @@ fn simplify_flat(
         model: mut flat,
         evaluated_parameters,
         mut events,
+        inputs,
     } = stage;
     let t1 = Instant::now();
     let name = flat.name.clone();
     let flat_size = (flat.equations.len(), flat.variables.len());
 
-    let aliased = alias_stage(&mut flat);
+    let aliased = alias_stage(&mut flat, &inputs);
     // The variables and the equations' origins move into storage shared by the texts of
     // all equations (no copy of an origin or a name per equation).
     let variables: Arc<Vec<Variable>> = Arc::new(std::mem::take(&mut flat.variables));
@@ -258,6 +279,9 @@ fn simplify_flat(
         parameters: &flat.parameters,
     };
     let show = |a: &crate::expr::Arena, e: Id| a.display(e, &flat_names);
+    let input_names: Vec<(usize, String)> = (inputs.iter())
+        .map(|&j| (j, flat.parameters[j].name.to_string()))
+        .collect();
     let reduced = reduce(
         ReduceInput {
             arena: &mut flat.arena,
@@ -268,6 +292,7 @@ fn simplify_flat(
             equations,
             definitions: aliased.definitions,
             angular_velocity: &aliased.angular_velocity,
+            inputs: &input_names,
             show: &show,
         },
         &name,
@@ -284,8 +309,9 @@ fn simplify_flat(
             .unwrap_or_else(|_| vec![f64::NAN; flat.parameters.len()]);
     // What events change has no default to rely on: no coefficient of it is safe to
     // divide by (a friction element's `if locked then 0 else 1`).
+    // Nor have the inputs, which the problem sets.
     for (p, changes) in events.parameters(default_params.len()).iter().enumerate() {
-        if *changes {
+        if *changes || inputs.contains(&p) {
             default_params[p] = f64::NAN;
         }
     }
@@ -417,6 +443,7 @@ fn simplify_flat(
             starts,
             structural,
             events,
+            inputs,
         },
         reduction: Reduction {
             replaced: aliased.aliases.replaced,
@@ -471,8 +498,8 @@ struct AliasStage {
 }
 
 /// Stage 2: alias elimination.
-fn alias_stage(flat: &mut crate::model::FlatSystem) -> AliasStage {
-    let aliases = alias::eliminate_aliases(flat);
+fn alias_stage(flat: &mut crate::model::FlatSystem, inputs: &[usize]) -> AliasStage {
+    let aliases = alias::eliminate_aliases(flat, inputs);
     let nv = flat.variables.len();
     let kept: Vec<bool> = aliases.replaced.iter().map(Option::is_none).collect();
     let priority: Vec<f64> = flat.variables.iter().map(|v| v.state_priority).collect();

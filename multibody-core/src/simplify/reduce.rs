@@ -203,8 +203,27 @@ pub(crate) struct ReduceInput<'a> {
     /// Per flat variable: whether it is an angular velocity (a variable that the
     /// derivative rules of orientation entries contain).
     pub angular_velocity: &'a [bool],
+    /// The parameters that are the model's inputs, with their names: no equation that
+    /// reads one may be differentiated (its derivative is not known).
+    pub inputs: &'a [(usize, String)],
     /// Displays an expression (for messages).
     pub show: &'a dyn Fn(&Arena, Id) -> String,
+}
+
+/// The name of the first of the model's `inputs` that `residual` reads.
+fn input_in<'i>(arena: &Arena, residual: Id, inputs: &'i [(usize, String)]) -> Option<&'i str> {
+    if inputs.is_empty() {
+        return None;
+    }
+    let leaves = arena.leaves(residual);
+    inputs
+        .iter()
+        .find(|(j, _)| {
+            leaves
+                .iter()
+                .any(|&l| matches!(arena.node(l), crate::expr::Node::Param(k) if *k as usize == *j))
+        })
+        .map(|(_, name)| name.as_str())
 }
 
 /// An equation as written, followed by what it became after alias elimination, for
@@ -238,6 +257,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced
         equations,
         definitions,
         angular_velocity,
+        inputs,
         show,
     } = input;
     let mut table = SlotTable {
@@ -313,6 +333,13 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced
     let mut memo = NodeMap::new();
     for e in n_original..red.graph.n_eqs() {
         let src = anti_eq[e].expect("a new equation is a derivative");
+        if let Some(input) = input_in(table.arena, eqs[src].residual, inputs) {
+            return Err(SimplifyError::DifferentiatedInput {
+                model: model.to_string(),
+                input: input.to_string(),
+                equation: eqs[src].text.to_string(),
+            });
+        }
         let d = table.arena.time_derivative(eqs[src].residual);
         let d = canonical(table.arena, d, derivative_map, &mut memo);
         let text = eqs[src].text.derivative();

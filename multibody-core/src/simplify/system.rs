@@ -177,6 +177,23 @@ pub(crate) struct ModelData {
     pub(crate) structural: Vec<String>,
     /// What generates events, and what happens at them.
     pub(crate) events: super::Events,
+    /// The parameters that are the model's inputs (see
+    /// [`SimplifyOptions::inputs`](super::SimplifyOptions::inputs)).
+    pub(crate) inputs: Vec<usize>,
+}
+
+impl ModelData {
+    /// Per parameter (of `n`): whether its value changes during a run (events change
+    /// it, or it is an input).
+    pub(crate) fn changing_parameters(&self, n: usize) -> Vec<bool> {
+        let mut changing = self.events.parameters(n);
+        for &j in &self.inputs {
+            if let Some(c) = changing.get_mut(j) {
+                *c = true;
+            }
+        }
+        changing
+    }
 }
 
 /// The index-reduced equations and the variables they are in: what alias elimination,
@@ -405,6 +422,15 @@ impl SimplifiedSystem {
     /// Warnings found while simplifying (for example about state selection).
     pub fn warnings(&self) -> &[String] {
         &self.warnings
+    }
+
+    /// Names of the model's inputs (see
+    /// [`SimplifyOptions::inputs`](super::SimplifyOptions::inputs)), parameters whose
+    /// values a problem gives, constant or as functions of time.
+    pub fn inputs(&self) -> Vec<String> {
+        (self.model.inputs.iter())
+            .map(|&j| self.model.parameters[j].name.to_string())
+            .collect()
     }
 
     /// Names of the tunable parameters.

@@ -5,6 +5,8 @@ use crate::Error;
 use crate::model::Named;
 use crate::simplify::SimplifiedSystem;
 
+use super::error::InitError;
+use super::inputs::{Drivers, InputSignal};
 use super::problem::DaeProblem;
 
 /// Collects the values and guesses of a [`DaeProblem`], each named by a typed handle's
@@ -38,6 +40,7 @@ pub struct ProblemBuilder<'a> {
     tspan: (f64, f64),
     values: Vec<(String, f64)>,
     guesses: Vec<(String, f64)>,
+    inputs: Vec<(String, InputSignal)>,
 }
 
 impl<'a> ProblemBuilder<'a> {
@@ -48,6 +51,7 @@ impl<'a> ProblemBuilder<'a> {
             tspan,
             values: Vec::new(),
             guesses: Vec::new(),
+            inputs: Vec::new(),
         }
     }
 
@@ -73,12 +77,27 @@ impl<'a> ProblemBuilder<'a> {
         self
     }
 
-    /// Checks the values and guesses and runs the initialization.
+    /// Drives an input of the model (see
+    /// [`SimplifyOptions::inputs`](crate::simplify::SimplifyOptions::inputs)) by the
+    /// function of time `f` during the solve (a constant input is a
+    /// [`value`](Self::value)).
+    pub fn input(self, name: impl Named, f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        self.input_signal(name, InputSignal::new(f))
+    }
+
+    /// Drives an input of the model by `signal` (a function or a table).
+    pub fn input_signal(mut self, name: impl Named, signal: InputSignal) -> Self {
+        self.inputs.push((name.name().into_owned(), signal));
+        self
+    }
+
+    /// Checks the values, guesses and inputs and runs the initialization.
     pub fn build(self) -> Result<DaeProblem<'a>, Error> {
         let values: Vec<(&str, f64)> = self.values.iter().map(|(n, v)| (n.as_str(), *v)).collect();
         let guesses: Vec<(&str, f64)> =
             self.guesses.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        DaeProblem::new_with_guesses(self.sys, &values, &guesses, self.tspan)
+        let drivers = drivers(self.sys, &self.inputs, &self.values)?;
+        DaeProblem::new_driven(self.sys, &values, &guesses, self.tspan, drivers)
     }
 }
 
@@ -87,4 +106,46 @@ impl<'a> DaeProblem<'a> {
     pub fn builder(sys: &'a SimplifiedSystem, tspan: (f64, f64)) -> ProblemBuilder<'a> {
         ProblemBuilder::new(sys, tspan)
     }
+}
+
+/// The drivers of `inputs` (each an input of `sys`, driven once and given no value).
+fn drivers(
+    sys: &SimplifiedSystem,
+    inputs: &[(String, InputSignal)],
+    values: &[(String, f64)],
+) -> Result<Drivers, Error> {
+    let bad = |message: String| -> Error {
+        InitError::BadValue {
+            model: sys.model.name.clone(),
+            message,
+        }
+        .into()
+    };
+    let names = sys.inputs();
+    let mut out: Vec<(usize, String, InputSignal)> = Vec::with_capacity(inputs.len());
+    for (name, signal) in inputs {
+        let Some(k) = names.iter().position(|n| n == name) else {
+            let what = if names.is_empty() {
+                "the model has no inputs (SimplifyOptions::inputs names them)".to_string()
+            } else {
+                format!("its inputs are {}", crate::names::list(&names, 12))
+            };
+            return Err(bad(format!(
+                "`{name}` is not an input of the model: {what}"
+            )));
+        };
+        if out.iter().any(|(_, n, _)| n == name) {
+            return Err(bad(format!("the input `{name}` is driven twice")));
+        }
+        if values.iter().any(|(n, _)| n == name) {
+            return Err(bad(format!(
+                "the input `{name}` is given both a value and a signal"
+            )));
+        }
+        signal
+            .check()
+            .map_err(|m| bad(format!("the signal of the input `{name}`: {m}")))?;
+        out.push((sys.model.inputs[k], name.clone(), signal.clone()));
+    }
+    Ok(Drivers::new(out))
 }

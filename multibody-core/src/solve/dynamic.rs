@@ -30,6 +30,8 @@ pub(crate) struct Observer<'a> {
     /// Outputs at the point itself.
     pub(crate) base: Vec<f64>,
     out: Vec<f64>,
+    /// The signals that drive the model's inputs.
+    drivers: super::inputs::Drivers,
 }
 
 impl<'a> Observer<'a> {
@@ -41,7 +43,14 @@ impl<'a> Observer<'a> {
             inputs: vec![0.0; layout.len()],
             base: vec![0.0; tape.n_outputs()],
             out: vec![0.0; tape.n_outputs()],
+            drivers: Default::default(),
         }
+    }
+
+    /// The same observer with the model's inputs driven by `drivers`.
+    pub(crate) fn with_drivers(mut self, drivers: super::inputs::Drivers) -> Self {
+        self.drivers = drivers;
+        self
     }
 
     /// Loads the point `(t, y, yp)` with parameters `params` and evaluates `base`;
@@ -55,6 +64,9 @@ impl<'a> Observer<'a> {
         for k in 0..l.n {
             self.inputs[l.u(k)] = y[k];
             self.inputs[l.up(k)] = yp[k];
+        }
+        if self.drivers.load(t, &mut self.inputs, l).is_err() {
+            return false;
         }
         self.tape
             .eval(&self.inputs, &mut self.ws, &mut self.base)

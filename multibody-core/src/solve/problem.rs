@@ -15,6 +15,7 @@ use super::error::{InitError, SolveError};
 use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
+use super::inputs::Drivers;
 use super::options::{LinearSolver, SolverOptions};
 use super::solution::{Segment, Solution, SolutionParts, Termination};
 
@@ -44,6 +45,8 @@ pub struct DaeProblem<'a> {
     /// The values and guesses given (for the same problem on the system's dynamic
     /// variant, if one is needed).
     given: Option<Box<Given>>,
+    /// The signals that drive the model's inputs.
+    drivers: Drivers,
 }
 
 /// Values and guesses a problem was made with, and the value of every variable its
@@ -324,6 +327,17 @@ impl<'a> DaeProblem<'a> {
         guesses: &[(&str, f64)],
         tspan: (f64, f64),
     ) -> Result<Self, Error> {
+        Self::new_driven(sys, values, guesses, tspan, Drivers::default())
+    }
+
+    /// [`Self::new_with_guesses`] with the model's inputs driven by `drivers`.
+    pub(crate) fn new_driven(
+        sys: &'a SimplifiedSystem,
+        values: &[(&str, f64)],
+        guesses: &[(&str, f64)],
+        tspan: (f64, f64),
+        drivers: Drivers,
+    ) -> Result<Self, Error> {
         if !(tspan.0.is_finite() && tspan.1.is_finite() && tspan.1 > tspan.0) {
             return Err(InitError::BadValue {
                 model: sys.model.name.clone(),
@@ -436,7 +450,10 @@ impl<'a> DaeProblem<'a> {
                 None => return Err(unknown(name).into()),
             }
         }
-        let params = parameter_values(sys, &param_overrides)?;
+        let mut params = parameter_values(sys, &param_overrides)?;
+        drivers
+            .apply(tspan.0, &mut params)
+            .map_err(|e| bad(e.message))?;
         if let Some(j) = params.iter().position(|p| !p.is_finite()) {
             return Err(bad(format!(
                 "parameter `{}` evaluates to {}",
@@ -495,7 +512,7 @@ impl<'a> DaeProblem<'a> {
                         sys.model.name
                     );
                     let variant = dynamic_variant_of(sys, tspan.0)?;
-                    return DaeProblem::new_with_guesses(variant, values, guesses, tspan)
+                    return DaeProblem::new_driven(variant, values, guesses, tspan, drivers)
                         .map_err(|_| Error::from(e));
                 }
                 Err(e) => return Err(e.into()),
@@ -537,7 +554,7 @@ impl<'a> DaeProblem<'a> {
                 initial,
             })
         });
-        Ok(DaeProblem::from_init(sys, tspan, init, given))
+        Ok(DaeProblem::from_init(sys, tspan, init, given, drivers))
     }
 
     /// The problem of `sys` over `tspan` that `init` initialized.
@@ -546,6 +563,7 @@ impl<'a> DaeProblem<'a> {
         tspan: (f64, f64),
         init: super::init::InitResult,
         given: Option<Box<Given>>,
+        drivers: Drivers,
     ) -> DaeProblem<'a> {
         let (u0, up0) = unknowns_of(sys, &init.slot_values);
         DaeProblem {
@@ -560,6 +578,7 @@ impl<'a> DaeProblem<'a> {
                 iteration_variables: init.iteration_variables,
             },
             given,
+            drivers,
         }
     }
 
@@ -595,7 +614,13 @@ impl<'a> DaeProblem<'a> {
                     .iter()
                     .map(|(n, v)| (n.as_str(), *v))
                     .collect();
-                return DaeProblem::new_with_guesses(variant, &values, &guesses, self.tspan);
+                return DaeProblem::new_driven(
+                    variant,
+                    &values,
+                    &guesses,
+                    self.tspan,
+                    self.drivers.clone(),
+                );
             }
         };
         Ok(DaeProblem::from_init(
@@ -603,6 +628,7 @@ impl<'a> DaeProblem<'a> {
             self.tspan,
             init,
             self.given.clone(),
+            self.drivers.clone(),
         ))
     }
 
@@ -642,7 +668,8 @@ impl<'a> DaeProblem<'a> {
     /// consistent).
     pub fn initial_residual(&self) -> Vec<f64> {
         let c = &self.sys.compiled;
-        let mut f = CompiledFunctions::new(c, &self.params, false);
+        let mut f =
+            CompiledFunctions::new(c, &self.params, false).with_drivers(self.drivers.clone());
         let mut out = vec![0.0; self.u0.len()];
         let _ = f.residual(self.tspan.0, &self.u0, &self.up0, &mut out);
         out
@@ -715,7 +742,8 @@ impl<'a> DaeProblem<'a> {
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
-        let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout);
+        let mut observer = Observer::new(&sys.compiled.observed, sys.compiled.layout)
+            .with_drivers(self.drivers.clone());
         let mut bridges = 0;
         // The end of the stretch being integrated with relaxed tolerances across a
         // singular point (`None` outside one), and the relaxation.
@@ -902,6 +930,7 @@ impl<'a> DaeProblem<'a> {
             init: self.report.clone(),
             events: run.events.events,
             terminated: run.terminated,
+            drivers: self.drivers.clone(),
         }))
     }
 
@@ -916,6 +945,12 @@ impl<'a> DaeProblem<'a> {
         options: &SolverOptions,
         run: &mut Run,
     ) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        self.drivers.apply(t, params).map_err(|e| SolveError {
+            model: self.sys.model.name.clone(),
+            t,
+            flag: "INPUT".into(),
+            message: e.message,
+        })?;
         let settled = super::events::settle(
             self.sys,
             self.tspan,
@@ -1011,7 +1046,9 @@ impl<'a> DaeProblem<'a> {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
         };
-        let mut f = CompiledFunctions::new(c, params, extended).with_crossings(sys);
+        let mut f = CompiledFunctions::new(c, params, extended)
+            .with_drivers(self.drivers.clone())
+            .with_crossings(sys);
         let first = run.t.len();
         let mut exceeded = None;
         let mut decision = None;
@@ -1113,7 +1150,7 @@ impl<'a> DaeProblem<'a> {
                     if options.project_outputs {
                         project(
                             c,
-                            params,
+                            (params, &self.drivers),
                             &sys.sorted.mass_matrix_diagonal,
                             (t0, u0, up0),
                             run,
@@ -1136,7 +1173,7 @@ impl<'a> DaeProblem<'a> {
         if options.project_outputs {
             project(
                 c,
-                params,
+                (params, &self.drivers),
                 &sys.sorted.mass_matrix_diagonal,
                 (t0, u0, up0),
                 run,
@@ -1181,14 +1218,14 @@ impl<'a> DaeProblem<'a> {
 /// constraints (see [`SolverOptions::project_outputs`]); the segment started at `start`.
 fn project(
     c: &CompiledDae,
-    params: &[f64],
+    (params, drivers): (&[f64], &Drivers),
     mass: &[f64],
     (t0, u0, up0): (f64, &[f64], &[f64]),
     run: &mut Run,
     first: usize,
 ) {
     let n = u0.len();
-    let mut plain = CompiledFunctions::new(c, params, false);
+    let mut plain = CompiledFunctions::new(c, params, false).with_drivers(drivers.clone());
     let Some(mut projection) = super::project::Projection::new(&mut plain, mass, t0, u0, up0)
     else {
         return;
@@ -1346,7 +1383,7 @@ pub(super) fn specialized_for(
     if !options.specialize_parameters || sys.compiled.layout.n_params == 0 {
         return None;
     }
-    let changing = sys.model.events.parameters(params.len());
+    let changing = sys.model.changing_parameters(params.len());
     let key: Vec<f64> = params
         .iter()
         .zip(&changing)
@@ -1427,6 +1464,8 @@ pub(crate) struct CompiledFunctions<'c> {
     /// [`Self::new`]: the first call analyses it).
     ews: Option<(&'c ExtendedJacobian, ExtendedWorkspace)>,
     layout: InputLayout,
+    /// The signals that drive the model's inputs.
+    drivers: Drivers,
 }
 
 impl<'c> CompiledFunctions<'c> {
@@ -1450,7 +1489,14 @@ impl<'c> CompiledFunctions<'c> {
                 .flatten()
                 .map(|e| (e, e.workspace(&c.residual))),
             layout,
+            drivers: Drivers::default(),
         }
+    }
+
+    /// The same functions with the model's inputs driven by `drivers`.
+    pub(crate) fn with_drivers(mut self, drivers: Drivers) -> Self {
+        self.drivers = drivers;
+        self
     }
 
     /// The same functions with the crossing functions of `sys`'s event relations (from
@@ -1494,7 +1540,7 @@ impl<'c> CompiledFunctions<'c> {
     /// Keeps the hysteresis of the crossing functions that start the integration at
     /// `(t, y, yp)` at zero; the others cross at zero exactly.
     fn start_crossings(&mut self, t: f64, y: &[f64], yp: &[f64]) -> Result<(), EvalError> {
-        self.load(t, y, yp);
+        self.load(t, y, yp)?;
         let Some(c) = &mut self.crossings else {
             return Ok(());
         };
@@ -1520,7 +1566,8 @@ impl<'c> CompiledFunctions<'c> {
         out
     }
 
-    fn load(&mut self, t: f64, y: &[f64], yp: &[f64]) {
+    /// Loads the point `(t, y, yp)` and the inputs' values at `t`.
+    fn load(&mut self, t: f64, y: &[f64], yp: &[f64]) -> Result<(), EvalError> {
         let n = self.layout.n;
         self.inputs[InputLayout::TIME] = t;
         if n > 0 {
@@ -1529,6 +1576,7 @@ impl<'c> CompiledFunctions<'c> {
             let up0 = self.layout.up(0);
             self.inputs[up0..up0 + n].copy_from_slice(yp);
         }
+        self.drivers.load(t, &mut self.inputs, self.layout)
     }
 }
 
@@ -1544,7 +1592,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
         yp: &[f64],
         out: &mut [f64],
     ) -> Result<(), EvalError> {
-        self.load(t, y, yp);
+        self.load(t, y, yp)?;
         self.c.residual.eval(&self.inputs, &mut self.ws, out)?;
         if let Some(i) = out.iter().position(|v| !v.is_finite()) {
             return Err(EvalError {
@@ -1563,7 +1611,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
         if self.crossings.as_ref().is_some_and(|c| !c.started) {
             self.start_crossings(t, y, yp)?;
         }
-        self.load(t, y, yp);
+        self.load(t, y, yp)?;
         if let Some(c) = &mut self.crossings {
             c.observed.eval(&self.inputs, &mut c.ws, &mut c.out)?;
             for ((g, &k), shift) in out.iter_mut().zip(&c.outputs).zip(&c.shifts) {
@@ -1598,7 +1646,7 @@ impl DaeFunctions for CompiledFunctions<'_> {
         cj: f64,
         values: &mut [f64],
     ) -> Result<(), EvalError> {
-        self.load(t, y, yp);
+        self.load(t, y, yp)?;
         match &mut self.ews {
             Some((e, ews)) => e.eval(&self.c.residual, &self.inputs, cj, ews, values),
             None => {

@@ -43,6 +43,8 @@ pub struct Solution {
     init: InitReport,
     events: Vec<Event>,
     terminated: Option<Termination>,
+    /// The signals that drove the model's inputs.
+    drivers: super::inputs::Drivers,
 }
 
 /// Where and why a `terminate(..)` of the model ended the simulation.
@@ -116,6 +118,8 @@ pub(crate) struct SolutionParts {
     pub events: Vec<Event>,
     /// Where a `terminate(..)` ended the run.
     pub terminated: Option<Termination>,
+    /// The signals that drove the model's inputs.
+    pub drivers: super::inputs::Drivers,
 }
 
 impl Solution {
@@ -139,6 +143,7 @@ impl Solution {
             init: p.init,
             events: p.events,
             terminated: p.terminated,
+            drivers: p.drivers,
         }
     }
 
@@ -308,6 +313,10 @@ impl Solution {
             inputs[up0..up0 + n].copy_from_slice(up);
         }
         let outputs = self.observed.n_outputs();
+        if let Err(e) = self.drivers.load(t, inputs, self.layout) {
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+            return Err(e.message);
+        }
         out[outputs..outputs + n].copy_from_slice(up);
         for j in 0..self.layout.n_params {
             out[outputs + n + j] = inputs[self.layout.param(j)];
@@ -480,12 +489,10 @@ impl Solution {
     /// linearize the system.
     pub fn operating_point(&self, t: f64) -> Result<super::OperatingPoint, SolutionError> {
         let (u, up, k) = self.interpolate(t)?;
-        Ok(super::OperatingPoint {
-            t,
-            u,
-            up,
-            params: self.segments[self.segment_of(k)].params.clone(),
-        })
+        let mut params = self.segments[self.segment_of(k)].params.clone();
+        // A driver that fails here failed in the solve already.
+        let _ = self.drivers.apply(t, &mut params);
+        Ok(super::OperatingPoint { t, u, up, params })
     }
 
     /// The value of a variable at any time of the solved interval, interpolated between
