@@ -165,6 +165,43 @@
 //! # Ok::<(), multibody::Error>(())
 //! ```
 //!
+//! ## Inputs, linearization and control design
+//!
+//! The model's inputs are signal inputs left unconnected ([`SimplifyOptions::open_inputs`])
+//! or variables named in [`SimplifyOptions::inputs`]; each becomes a parameter of the
+//! compiled model that a problem drives by a function of time or a table
+//! ([`ProblemBuilder::input`], [`InputSignal`]), or holds at a value, without compiling
+//! again. [`linearize`] gives the exact state-space model from those inputs to any
+//! variables at a problem's initial point, a solution's point or a [`steady_state`];
+//! [`LinearModel::poles`], [`LinearModel::frequency_response`], [`control::place_poles`]
+//! and [`control::lqr`] work on it.
+//!
+//! ```
+//! # use multibody::prelude::*;
+//! use multibody::rotational::{Inertia, Torque};
+//! use multibody::{SimplifyOptions, linearize, structural_simplify_with};
+//!
+//! let model = system! {
+//!     name: "driven";
+//!     torque = Torque::default();
+//!     inertia = Inertia { J: 2.0 };
+//!     connect(torque.flange, inertia.flange_a);
+//! };
+//! let options = SimplifyOptions { open_inputs: true, ..Default::default() };
+//! let ssys = structural_simplify_with(&model, &options)?;
+//! assert_eq!(ssys.inputs(), ["torque.tau"]);
+//! let problem = DaeProblem::builder(&ssys, (0.0, 3.0))
+//!     .input("torque.tau", |t: f64| t.sin())
+//!     .build()?;
+//! let sol = problem.solve(&SolverOptions { rtol: 1e-9, ..SolverOptions::default() })?;
+//! // J phi'' = sin t from rest
+//! assert!((sol.final_value("inertia.phi")? - (3.0 - 3.0f64.sin()) / 2.0).abs() < 1e-6);
+//! let lin = linearize(&ssys, &problem.operating_point(), &["torque.tau"], &["inertia.w"])?;
+//! assert_eq!(lin.states, ["inertia.phi", "inertia.w"]);
+//! assert!((lin.b[(1, 0)] - 0.5).abs() < 1e-12); // 1 / J
+//! # Ok::<(), multibody::Error>(())
+//! ```
+//!
 //! ## Read results
 //!
 //! Every variable of the model can be read from the [`Solution`], not only the states:

@@ -6,9 +6,9 @@
 use std::f64::consts::PI;
 
 use multibody::blocks::Constant;
-use multibody::joints::Revolute;
+use multibody::joints::{Revolute, RevolutePlanarLoopConstraint};
 use multibody::nalgebra::Complex;
-use multibody::parts::{Body, FixedTranslation};
+use multibody::parts::{Body, BodyShape, FixedTranslation};
 use multibody::prelude::*;
 use multibody::rotational::{Damper, Torque};
 use multibody::translational::{Fixed, Mass, Spring};
@@ -374,4 +374,86 @@ fn linearization_in_chosen_states() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("do not determine the state"), "{err}");
+}
+
+#[test]
+fn a_parallelogram_four_bar_linearizes_in_its_one_degree_of_freedom() {
+    // Two cranks of length l hanging from the world at x = 0 and x = l, a coupler
+    // between their lower ends, point masses m at the bars' centres: one degree of
+    // freedom (the first crank's angle), with kinetic energy (m l^2 / 4 + m l^2 / 4 +
+    // m l^2) phi'^2 / 2 and potential energy 2 m g l (1 - cos phi). About the hanging
+    // position it oscillates with w^2 = 2 m g l / (1.5 m l^2) = 4 g / (3 l).
+    let (m, l) = (0.7, 1.2);
+    let model = system! {
+        name: "parallelogram";
+        world = World::default();
+        anchor = FixedTranslation { r: [l, 0.0, 0.0] };
+        j1 = Revolute { n: [0.0, 0.0, 1.0] };
+        j2 = Revolute { n: [0.0, 0.0, 1.0] };
+        j3 = Revolute { n: [0.0, 0.0, 1.0] };
+        j4 = RevolutePlanarLoopConstraint { n: [0.0, 0.0, 1.0] };
+        crank1 = BodyShape { m, r: [0.0, -l, 0.0], I_diag: [0.0, 0.0, 0.0] };
+        coupler = BodyShape { m, r: [l, 0.0, 0.0], I_diag: [0.0, 0.0, 0.0] };
+        crank2 = BodyShape { m, r: [0.0, l, 0.0], I_diag: [0.0, 0.0, 0.0] };
+        connect(world.frame_b, j1.frame_a);
+        connect(j1.frame_b, crank1.frame_a);
+        connect(crank1.frame_b, j2.frame_a);
+        connect(j2.frame_b, coupler.frame_a);
+        connect(coupler.frame_b, j3.frame_a);
+        connect(j3.frame_b, crank2.frame_a);
+        connect(crank2.frame_b, j4.frame_a);
+        connect(world.frame_b, anchor.frame_a);
+        connect(anchor.frame_b, j4.frame_b);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states().len(), 2, "{:?}", ssys.states());
+    let problem = DaeProblem::builder(&ssys, (0.0, 1.0))
+        .value(model.j1.phi, 0.0)
+        .value(model.j1.w, 0.0)
+        .build()
+        .unwrap();
+    let point = problem.operating_point();
+    let lin = multibody::linearize_in(
+        &ssys,
+        &point,
+        &[],
+        &["j2.phi", "j3.phi"],
+        &["j1.phi", "j1.w"],
+    )
+    .unwrap();
+    let w2 = 4.0 * G / (3.0 * l);
+    assert!(
+        lin.a[(0, 0)].abs() < 1e-12 && (lin.a[(0, 1)] - 1.0).abs() < 1e-12,
+        "{}",
+        lin.a
+    );
+    assert!(
+        (lin.a[(1, 0)] + w2).abs() < 1e-9 * w2,
+        "{} vs {}",
+        lin.a[(1, 0)],
+        -w2
+    );
+    assert!(lin.a[(1, 1)].abs() < 1e-12, "{}", lin.a);
+    for e in lin.eigenvalues() {
+        assert!(
+            e.re.abs() < 1e-9 && (e.im.abs() - w2.sqrt()).abs() < 1e-9,
+            "{e}"
+        );
+    }
+    // The coupler stays parallel to the ground (j2 = -j1) and the other crank turns with
+    // the first (j3 = j1).
+    assert!(
+        (lin.c[(0, 0)] + 1.0).abs() < 1e-9 && (lin.c[(1, 0)] - 1.0).abs() < 1e-9,
+        "{}",
+        lin.c
+    );
+    // Away from the equilibrium too, against central differences of the nonlinear model.
+    let moving = DaeProblem::builder(&ssys, (0.0, 1.0))
+        .value(model.j1.phi, 0.4)
+        .value(model.j1.w, 0.3)
+        .build()
+        .unwrap();
+    let point = moving.operating_point();
+    let lin = linearize(&ssys, &point, &[], &["j3.phi"]).unwrap();
+    check_differences(&ssys, &lin, &point, 1e-6);
 }
