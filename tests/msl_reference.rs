@@ -348,3 +348,42 @@ fn one_axis() {
     let result = common::tube_compare(&sol, &outside, &[start_forward.as_str()], 2e-3);
     assert_eq!(result[0].failures, 0, "{result:?}");
 }
+
+#[test]
+fn full_robot() {
+    // MSL Systems.RobotR3.FullRobot: six axes (motors with current controllers,
+    // gearboxes with bearing friction, elastic on axes 1 to 3, cascaded controllers) on
+    // the six-joint arm with its load, along a synchronized move; it terminates half a
+    // second after the move. Every signal of the file (the 36 states, the joints' speed
+    // of r2 as `b2.body.w_a[1]`, and the six friction modes) inside the tube.
+    let mut model = System::new("FullRobot");
+    model.add("", &multibody::robot_r3::FullRobot::default());
+    let ssys = structural_simplify(&model).unwrap();
+    assert_eq!(ssys.states().len(), 36, "{:?}", ssys.states());
+    let sol = DaeProblem::new(&ssys, &[], (0.0, 2.0))
+        .unwrap()
+        .solve(&options(2.0))
+        .unwrap();
+    let end = sol.terminated().expect("terminates").t;
+    assert!((end - 1.8560450019040893).abs() < 1e-12, "ends at {end}");
+    let reference = common::read_reference("FullRobot");
+    assert_eq!(reference.names.len(), 42);
+    let signals: Vec<&str> = reference.names.iter().map(String::as_str).collect();
+    assert_in_tube("FullRobot", &sol, &signals);
+    // The motors hold the arm at the start: the stuck frictions carry no torque, and the
+    // motor torques balance gravity (axis 2: k i ratio = -460.573 N.m).
+    for k in 1..=6 {
+        let tau = sol
+            .at(format!("axis{k}.gear.bearingFriction.tau").as_str(), 0.0)
+            .unwrap();
+        assert!(
+            tau.abs() < 1e-9,
+            "axis {k}: friction torque {tau} at the start"
+        );
+    }
+    let i2 = sol.at("axis2.motor.La.i", 0.0).unwrap();
+    assert!(
+        (1.1616 * i2 * 210.0 + 460.57344766720684).abs() < 1e-6,
+        "{i2}"
+    );
+}

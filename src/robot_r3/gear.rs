@@ -53,3 +53,37 @@ component! {
         }
     }
 }
+
+component! {
+    /// The gearbox of the robot's axes 4 to 6 (MSL `RobotR3.Utilities.GearType2`): an
+    /// ideal gear of ratio `i`, then bearing friction `Rv0 + Rv1 w` (static up to
+    /// `peak Rv0`) on the load side; rigid, without states of its own.
+    #[type_name = "RobotR3.GearType2"]
+    pub struct GearType2 {
+        /// Gear ratio [1], default -99.
+        parameter i: f64 = -99.0;
+        /// Viscous friction torque at zero speed [N.m], default 21.8.
+        structural Rv0: f64 = 21.8;
+        /// Viscous friction coefficient [N.m.s/rad], default 9.8.
+        structural Rv1: f64 = 9.8;
+        /// Maximum static friction torque over `Rv0` [1], default 26.7 / 21.8.
+        parameter peak(min = 1.0): f64 = 26.7 / 21.8;
+        /// Motor side.
+        connector flange_a: Flange;
+        /// Load side.
+        connector flange_b: Flange;
+        /// Ideal gear of ratio `i`.
+        component gear: IdealGear = IdealGear { ratio: self.i, ..IdealGear::default() };
+        /// Bearing friction on the load side.
+        component bearingFriction: BearingFriction = BearingFriction {
+            tau_pos: vec![[0.0, self.Rv0], [1.0, self.Rv0 + self.Rv1]],
+            peak: self.peak,
+            ..BearingFriction::default()
+        };
+        equation {
+            connect(gear.flange_b, bearingFriction.flange_a);
+            connect(bearingFriction.flange_b, flange_b);
+            connect(gear.flange_a, flange_a);
+        }
+    }
+}

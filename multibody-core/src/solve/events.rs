@@ -38,8 +38,9 @@ fn unsettled(sys: &SimplifiedSystem, t: f64, changing: &[String]) -> Error {
     .into()
 }
 
-/// `init` again with its relations' values at its point, until they agree with the
-/// values it used (Modelica evaluates the relations at the initial time as they are).
+/// `init` again with its relations' values at its point (and the discrete equations'
+/// values from them), until they agree with the values it used (Modelica evaluates the
+/// relations at the initial time as they are).
 /// `reinit` initializes with other parameter values.
 pub(super) fn settle_initial_relations(
     sys: &SimplifiedSystem,
@@ -69,6 +70,9 @@ pub(super) fn settle_initial_relations(
                 changing.push(r.text.clone());
             }
         }
+        // The discrete equations from them (a friction element that starts at rest is
+        // locked while it is initialized).
+        update_discrete(sys, &mut params, &observer.base, t0, &mut changing)?;
         if changing.is_empty() {
             return Ok(init);
         }

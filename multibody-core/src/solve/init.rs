@@ -81,6 +81,57 @@ pub(crate) struct InitResult {
     pub iteration_variables: Vec<String>,
 }
 
+/// `r` with each derivative `der(x)` that the reduced model does not contain replaced by
+/// `-(b / a) der(y)`, where an equation of the reduced model reads `a x + b y = 0` and
+/// `der(y)` is in it (`index`): an initial equation on the derivative of a variable that
+/// alias elimination left as an alias of a state's (two speeds of one flange).
+fn derivatives_through_aliases(
+    sys: &SimplifiedSystem,
+    arena: &mut crate::expr::Arena,
+    r: Id,
+    index: &IdIndex,
+) -> Id {
+    let mut map = crate::hash::HashMap::default();
+    for l in arena.leaves(r) {
+        let Node::Der(x) = *arena.node(l) else {
+            continue;
+        };
+        if index.contains(l) || !matches!(arena.node(x), Node::Var(_)) {
+            continue;
+        }
+        let found = sys.reduction.equations.iter().find_map(|e| {
+            let Node::Sum(ts, c) = *arena.node(e.residual) else {
+                return None;
+            };
+            let terms = arena.terms(ts);
+            if f64::from_bits(c) != 0.0 || terms.len() != 2 {
+                return None;
+            }
+            let (a, b) = match (terms[0], terms[1]) {
+                ((ka, ta), (kb, tb)) if ta == x => ((ka, ta), (kb, tb)),
+                ((kb, tb), (ka, ta)) if ta == x => ((ka, ta), (kb, tb)),
+                _ => return None,
+            };
+            let y = b.1;
+            let slot = sys.reduction.slot_of.get(y)?;
+            let d = sys.reduction.var_diff[slot]?;
+            let dy = sys.reduction.slots[d].leaf;
+            index
+                .contains(dy)
+                .then(|| (-f64::from_bits(b.0) / f64::from_bits(a.0), dy))
+        });
+        if let Some((k, dy)) = found {
+            let value = arena.scale(k, dy);
+            map.insert(l, value);
+        }
+    }
+    if map.is_empty() {
+        r
+    } else {
+        arena.substitute_leaves(r, &map)
+    }
+}
+
 /// Finds consistent initial values.
 #[allow(clippy::result_large_err)] // built once per problem, reported to the user
 pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> {
@@ -116,6 +167,7 @@ pub(crate) fn initialize(input: InitInput<'_>) -> Result<InitResult, InitError> 
             .map(|e| (e.residual, InitText::Model(&e.text))),
     );
     for (r, text) in &sys.reduction.initial_equations {
+        let r = &derivatives_through_aliases(sys, &mut arena, *r, &index);
         for l in arena.leaves(*r) {
             if matches!(arena.node(l), Node::Var(_) | Node::Der(_)) && !index.contains(l) {
                 return Err(InitError::BadValue {
