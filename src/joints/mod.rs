@@ -7,6 +7,7 @@
 //! frame gets its orientation from elsewhere.
 
 mod composite;
+mod gear_constraint;
 mod joint_rrr;
 mod joint_ssp;
 mod joint_usr;
@@ -20,6 +21,7 @@ mod spherical_spherical;
 mod universal_spherical;
 
 pub use composite::*;
+pub use gear_constraint::*;
 pub use joint_rrr::*;
 pub use joint_ssp::*;
 pub use joint_usr::*;
