@@ -5,6 +5,7 @@ mod body;
 mod drive_train;
 mod fixed;
 mod mass_properties;
+mod rolling_wheel;
 mod shapes;
 mod start_orientation;
 
@@ -12,5 +13,6 @@ pub use body::*;
 pub use drive_train::*;
 pub use fixed::*;
 pub use mass_properties::MassProperties;
+pub use rolling_wheel::*;
 pub use shapes::*;
 pub(crate) use start_orientation::{StartOrientation, given};

@@ -1,0 +1,96 @@
+//! The ideal rolling wheel (MSL `Joints.RollingWheel`): a wheel rolling without slip on
+//! the ground plane z = 0.
+
+use crate::frames::{Vec3, angular_velocity1, axes_rotations, resolve2};
+use crate::interfaces::Frame;
+use crate::prelude::*;
+
+/// The priority of the wheel's coordinates as states (MSL `StateSelect.always`).
+const WHEEL_STATE_PRIORITY: f64 = 1000.0;
+
+component! {
+    /// A massless joint for a wheel of `radius` rolling without slip on the ground plane
+    /// z = 0 (MSL `Joints.RollingWheel`; the world's gravity must be along -z, `n =
+    /// [0, 0, -1]`). `frame_a` is fixed in the wheel's centre and turns with it; the
+    /// wheel's axle is its y axis. The joint is a root of the orientation graph: its
+    /// coordinates are the centre's `x` and `y` and the `angles` (yaw about z, lean
+    /// about the turned x axis, spin about the axle: sequence {3, 1, 2}, singular only
+    /// for a wheel lying flat, where MSL's {3, 2, 1} is singular every half turn of an
+    /// upright wheel). One holonomic constraint keeps the wheel on the ground (the
+    /// centre's height `z`), two non-holonomic ones keep the contact point at rest; the
+    /// contact force has normal, lateral and longitudinal parts.
+    #[type_name = "MultiBody.Joints.RollingWheel"]
+    pub struct RollingWheel {
+        /// Radius of the wheel \[m\], default 0.3.
+        parameter radius(min = 0.0): f64 = 0.3;
+        /// Start value of `x` \[m\], default 0.
+        structural x_start: f64 = 0.0;
+        /// Start value of `y` \[m\], default 0.
+        structural y_start: f64 = 0.0;
+        /// Start values of the angles \[rad\], default 0.
+        structural angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Start values of the angles' rates \[rad/s\], default 0.
+        structural der_angles_start: [f64; 3] = [0.0, 0.0, 0.0];
+        /// Whether the start values are fixed (default false; `parts::RollingWheel`
+        /// fixes them, as MSL's).
+        structural fixed_start: bool = false;
+        /// Priority of the coordinates as states (default: always states).
+        structural state_priority: f64 = WHEEL_STATE_PRIORITY;
+        /// The wheel's centre (y axis: the axle).
+        connector frame_a: Frame;
+        /// x coordinate of the centre \[m\].
+        variable x(start = x_start, fixed = fixed_start, state_priority = state_priority): Real;
+        /// y coordinate of the centre \[m\].
+        variable y(start = y_start, fixed = fixed_start, state_priority = state_priority): Real;
+        /// Height of the centre \[m\].
+        variable z: Real;
+        /// Yaw, lean and spin \[rad\].
+        variable angles(start = angles_start, fixed = fixed_start, state_priority = state_priority): Vec3;
+        /// Their rates \[rad/s\].
+        variable der_angles(start = der_angles_start, fixed = fixed_start, state_priority = state_priority): Vec3;
+        /// The contact point on the ground, resolved in world \[m\].
+        variable r_road_0: Vec3;
+        /// The contact force on the wheel, resolved in world \[N\].
+        variable f_wheel_0: Vec3;
+        /// Normal contact force \[N\].
+        variable f_n: Real;
+        /// Lateral contact force \[N\].
+        variable f_lat: Real;
+        /// Longitudinal contact force (along the wheel's plane on the ground, backwards
+        /// for a wheel rolling forwards about +y) \[N\].
+        variable f_long: Real;
+        /// From the centre to the contact point, resolved in world \[m\].
+        variable delta_0: Vec3;
+        /// Velocity of the centre, resolved in world \[m/s\].
+        variable v_0: Vec3;
+        /// Angular velocity of the wheel, resolved in world \[rad/s\].
+        variable w_0: Vec3;
+        equation {
+            root(frame_a.R);
+            frame_a.r_0 = Vec3::new(x, y, z);
+            der_angles = der(angles);
+            frame_a.R = axes_rotations([3, 1, 2], angles.0, der_angles.0);
+            // The axle is (-sin(yaw) cos(lean), cos(yaw) cos(lean), sin(lean)); the contact
+            // point lies below the centre in the wheel's plane, at `radius` along the
+            // plane's steepest descent; the wheel's plane meets the ground along e_long.
+            let (yaw, lean) = (angles[0], angles[1]);
+            delta_0 = Vec3::new(sin(lean) * sin(yaw), -sin(lean) * cos(yaw), cos(lean)).scale(-radius);
+            let e_long_0 = Vec3::new(-cos(yaw), -sin(yaw), 0.0);
+            let e_lat_0 = Vec3::new(-sin(yaw), cos(yaw), 0.0);
+            // One holonomic constraint: the wheel touches the ground.
+            z = radius * cos(lean);
+            r_road_0 = frame_a.r_0 + delta_0;
+            // Two non-holonomic ones: the contact point does not slip.
+            v_0 = der(frame_a.r_0);
+            w_0 = angular_velocity1(&frame_a.R);
+            let v_contact = v_0 + w_0.cross(delta_0);
+            0.0 = v_contact.dot(e_long_0);
+            0.0 = v_contact.dot(e_lat_0);
+            f_n = f_wheel_0[2];
+            f_lat = f_wheel_0.dot(e_lat_0);
+            f_long = f_wheel_0.dot(e_long_0);
+            Vec3::zero() = frame_a.f + resolve2(&frame_a.R, f_wheel_0);
+            Vec3::zero() = frame_a.t + resolve2(&frame_a.R, delta_0.cross(f_wheel_0));
+        }
+    }
+}

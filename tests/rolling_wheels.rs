@@ -1,0 +1,122 @@
+//! The ideal rolling wheel against closed forms: a disk on a steady circle with a
+//! constant lean, and the invariants of a wheel rolling freely.
+
+use multibody::parts::RollingWheel;
+use multibody::prelude::*;
+use multibody::world::World;
+
+const G: f64 = 9.80665;
+
+fn options(t_end: f64, n: usize) -> SolverOptions {
+    SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
+        ..SolverOptions::default()
+    }
+}
+
+#[test]
+fn a_disk_leaning_into_a_circle_rolls_on_it() {
+    // A uniform disk (m, R, I_axis = m R^2 / 2, I_long = m R^2 / 4) whose centre runs on
+    // a circle of radius rho at speed v, leaning by theta towards its centre: steady
+    // when v^2 = g rho^2 tan(theta) / (rho (1 + I_axis / (m R^2)) + I_long / (m R)
+    // sin(theta)), with yaw rate v / rho and spin (rho + R sin theta) v / (rho R).
+    let (m, r, rho, theta): (f64, f64, f64, f64) = (1.0, 0.5, 1.5, 0.3);
+    let (i_axis, i_long) = (m * r * r / 2.0, m * r * r / 4.0);
+    let v = (G * rho * rho * theta.tan()
+        / (rho * (1.0 + i_axis / (m * r * r)) + i_long / (m * r) * theta.sin()))
+    .sqrt();
+    let omega = v / rho;
+    let spin = omega * (rho + r * theta.sin()) / r;
+    let model = system! {
+        name: "disk";
+        world = World { n: [0.0, 0.0, -1.0] };
+        wheel = RollingWheel {
+            radius: r, m, I_axis: i_axis, I_long: i_long,
+            angles_start: [0.0, -theta, 0.0],
+            der_angles_start: [omega, 0.0, spin],
+        };
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let period = 2.0 * std::f64::consts::PI / omega;
+    let sol = DaeProblem::builder(&ssys, (0.0, period))
+        .build()
+        .unwrap()
+        .solve(&options(period, 40))
+        .unwrap();
+    // It starts heading along x at speed v.
+    let v0 = sol.at("wheel.rollingWheel.v_0[1]", 0.0).unwrap();
+    assert!((v0.abs() - v).abs() < 1e-9, "{v0} vs {v}");
+    let sign = v0.signum();
+    for k in 0..=40 {
+        let t = k as f64 * period / 40.0;
+        let x = sol.at("wheel.rollingWheel.x", t).unwrap();
+        let y = sol.at("wheel.rollingWheel.y", t).unwrap();
+        let z = sol.at("wheel.rollingWheel.z", t).unwrap();
+        // The circle's centre is on the side the disk leans to (+y).
+        let radius = (x * x + (y - rho).powi(2)).sqrt();
+        assert!((radius - rho).abs() < 1e-7, "radius {radius} at {t}");
+        assert!((z - r * theta.cos()).abs() < 1e-9, "height {z} at {t}");
+        let heading = sign * omega * t;
+        assert!((x - rho * heading.sin()).abs() < 1e-6, "x {x} at {t}");
+    }
+}
+
+#[test]
+fn a_wheel_rolling_freely_keeps_its_energy() {
+    // MSL Examples.Elementary.RollingWheel: a wheel (R 0.3, m 2, I_axis 0.06, I_long
+    // 0.12) starts upright at (0.2, 0.2) spinning at 5 rad/s and leaning over at 1 rad/s;
+    // it rolls without slip, so its energy stays (9.03399 J), and its path matches an
+    // independent quaternion model of the same wheel (to 1e-4).
+    let model = system! {
+        name: "wheel";
+        world = World { n: [0.0, 0.0, -1.0] };
+        wheel = RollingWheel {
+            radius: 0.3, m: 2.0, I_axis: 0.06, I_long: 0.12,
+            x_start: 0.2, y_start: 0.2,
+            der_angles_start: [0.0, 1.0, 5.0],
+        };
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::builder(&ssys, (0.0, 4.0))
+        .build()
+        .unwrap()
+        .solve(&options(4.0, 400))
+        .unwrap();
+    let energy = |t: f64| {
+        let get = |n: &str| sol.at(n, t).unwrap();
+        let v2: f64 = (1..=3)
+            .map(|i| get(&format!("wheel.rollingWheel.v_0[{i}]")).powi(2))
+            .sum();
+        let w: Vec<f64> = (1..=3)
+            .map(|i| get(&format!("wheel.body.w_a[{i}]")))
+            .collect();
+        let rot = 0.12 * w[0] * w[0] + 0.06 * w[1] * w[1] + 0.12 * w[2] * w[2];
+        0.5 * 2.0 * v2 + 0.5 * rot + 2.0 * G * get("wheel.rollingWheel.z")
+    };
+    let e0 = energy(0.0);
+    assert!((e0 - 9.03399).abs() < 1e-5, "{e0}");
+    for k in 1..=40 {
+        let t = 0.1 * k as f64;
+        assert!((energy(t) - e0).abs() < 1e-6, "energy {} at {t}", energy(t));
+    }
+    for (t, x, y, z) in [
+        (1.0, 0.700579, -0.709359, 0.242466),
+        (2.0, -0.839391, -0.432619, 0.219211),
+        (4.0, 0.163003, -2.237614, 0.260848),
+    ] {
+        let got = [
+            sol.at("wheel.rollingWheel.x", t).unwrap(),
+            sol.at("wheel.rollingWheel.y", t).unwrap(),
+            sol.at("wheel.rollingWheel.z", t).unwrap(),
+        ];
+        for (g, want) in got.iter().zip([x, y, z]) {
+            assert!(
+                (g - want).abs() < 1e-4,
+                "{got:?} at {t}, want {:?}",
+                (x, y, z)
+            );
+        }
+    }
+}
