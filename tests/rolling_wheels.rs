@@ -125,18 +125,10 @@ fn a_wheel_rolling_freely_keeps_its_energy() {
 /// The force of MSL's RollingWheelSetPulling: (1, 0, 0) N until 1 s, then turning
 /// linearly to (0, 2, 0) N at 2 s, resolved in world.
 fn pull(t: Expr) -> Vec3 {
-    let ramp = t.clone() - 1.0;
+    let ramp = t - 1.0;
     Vec3::new(
-        if_else(
-            lt(t.clone(), 1.0),
-            1.0,
-            if_else(lt(t.clone(), 2.0), 1.0 - ramp.clone(), 0.0),
-        ),
-        if_else(
-            lt(t.clone(), 1.0),
-            0.0,
-            if_else(lt(t, 2.0), 2.0 * ramp, 2.0),
-        ),
+        if_else(lt(t, 1.0), 1.0, if_else(lt(t, 2.0), 1.0 - ramp, 0.0)),
+        if_else(lt(t, 1.0), 0.0, if_else(lt(t, 2.0), 2.0 * ramp, 2.0)),
         0.0,
     )
 }
