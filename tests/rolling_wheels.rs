@@ -144,7 +144,7 @@ fn msl_rolling_wheel_set_pulling() {
     let model = system! {
         name: "pulling";
         world = World { n: [0.0, 0.0, -1.0] };
-        wheelSet = multibody::parts::RollingWheelSet {
+        wheel_set = multibody::parts::RollingWheelSet {
             R_wheel: 0.1, m_wheel: 0.5, I_wheelAxis: 0.01, I_wheelLong: 0.02, track: 0.5,
             x_start: 0.1, y_start: 0.1,
         };
@@ -152,7 +152,7 @@ fn msl_rolling_wheel_set_pulling() {
         ahead = multibody::parts::FixedTranslation { r: [0.2, 0.0, 0.0] };
         force = multibody::forces::WorldForce::default();
         input = multibody::blocks::RealExpression3 { expression: pull };
-        connect(ahead.frame_a, wheelSet.frameMiddle);
+        connect(ahead.frame_a, wheel_set.frameMiddle);
         connect(ahead.frame_b, body.frame_a);
         connect(force.frame_b, ahead.frame_b);
         connect(input.y, force.force);
@@ -191,10 +191,10 @@ fn msl_rolling_wheel_set_pulling() {
         ),
     ] {
         for (name, w) in names.iter().zip(want) {
-            let got = sol.at(format!("wheelSet.{name}").as_str(), t).unwrap();
+            let got = sol.at(format!("wheel_set.{name}").as_str(), t).unwrap();
             assert!((got - w).abs() < 2e-6, "{name}({t}) = {got}, want {w}");
         }
     }
-    let x = sol.at("wheelSet.x", 0.5).unwrap();
+    let x = sol.at("wheel_set.x", 0.5).unwrap();
     assert!((x - 0.1 - 0.25 / (2.0 * 3.01)).abs() < 1e-9, "{x}");
 }
