@@ -44,10 +44,23 @@ component! {
         variable y(start = y_start, fixed = fixed_start, state_priority = state_priority): Real;
         /// Height of the centre \[m\].
         variable z: Real;
+        /// Heading: rotation about z \[rad\].
+        variable yaw(start = angles_start[0], fixed = fixed_start, state_priority = state_priority): Real;
+        /// Lean: rotation about the turned x axis \[rad\].
+        variable lean(start = angles_start[1], fixed = fixed_start, state_priority = state_priority): Real;
+        /// Spin: rotation about the axle \[rad\].
+        variable spin(start = angles_start[2], fixed = fixed_start, state_priority = state_priority): Real;
+        /// The heading's rate \[rad/s\] (a lower priority as a state than the other
+        /// rates: on a vehicle the other wheels determine it).
+        variable der_yaw(start = der_angles_start[0], fixed = fixed_start, state_priority = state_priority - 1.0): Real;
+        /// The lean's rate \[rad/s\].
+        variable der_lean(start = der_angles_start[1], fixed = fixed_start, state_priority = state_priority): Real;
+        /// The spin's rate \[rad/s\].
+        variable der_spin(start = der_angles_start[2], fixed = fixed_start, state_priority = state_priority): Real;
         /// Yaw, lean and spin \[rad\].
-        variable angles(start = angles_start, fixed = fixed_start, state_priority = state_priority): Vec3;
+        variable angles: Vec3;
         /// Their rates \[rad/s\].
-        variable der_angles(start = der_angles_start, fixed = fixed_start, state_priority = state_priority): Vec3;
+        variable der_angles: Vec3;
         /// The contact point on the ground, resolved in world \[m\].
         variable r_road_0: Vec3;
         /// The contact force on the wheel, resolved in world \[N\].
@@ -68,12 +81,15 @@ component! {
         equation {
             root(frame_a.R);
             frame_a.r_0 = Vec3::new(x, y, z);
-            der_angles = der(angles);
+            angles = Vec3::new(yaw, lean, spin);
+            der_angles = Vec3::new(der_yaw, der_lean, der_spin);
+            der_yaw = der(yaw);
+            der_lean = der(lean);
+            der_spin = der(spin);
             frame_a.R = axes_rotations([3, 1, 2], angles.0, der_angles.0);
             // The axle is (-sin(yaw) cos(lean), cos(yaw) cos(lean), sin(lean)); the contact
             // point lies below the centre in the wheel's plane, at `radius` along the
             // plane's steepest descent; the wheel's plane meets the ground along e_long.
-            let (yaw, lean) = (angles[0], angles[1]);
             delta_0 = Vec3::new(sin(lean) * sin(yaw), -sin(lean) * cos(yaw), cos(lean)).scale(-radius);
             let e_long_0 = Vec3::new(-cos(yaw), -sin(yaw), 0.0);
             let e_lat_0 = Vec3::new(-sin(yaw), cos(yaw), 0.0);
