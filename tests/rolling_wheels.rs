@@ -2,7 +2,8 @@
 //! constant lean, and the invariants of a wheel rolling freely.
 
 use multibody::Expr;
-use multibody::parts::RollingWheel;
+use multibody::joints::{Prismatic, Revolute, RollingContact};
+use multibody::parts::{Body, RollingWheel};
 use multibody::prelude::*;
 use multibody::world::World;
 
@@ -197,4 +198,64 @@ fn msl_rolling_wheel_set_pulling() {
     }
     let x = sol.at("wheel_set.x", 0.5).unwrap();
     assert!((x - 0.1 - 0.25 / (2.0 * 3.01)).abs() < 1e-9, "{x}");
+}
+
+#[test]
+fn a_rolling_contact_on_a_chain_of_joints_rolls_on_the_circle() {
+    // The disk of the first test, now carried by joints (x, y, z slides, yaw, lean and
+    // spin revolutes) with a RollingContact: the same steady circle.
+    let (m, r, rho, theta): (f64, f64, f64, f64) = (1.0, 0.5, 1.5, 0.3);
+    let (i_axis, i_long) = (m * r * r / 2.0, m * r * r / 4.0);
+    let v = (G * rho * rho * theta.tan()
+        / (rho * (1.0 + i_axis / (m * r * r)) + i_long / (m * r) * theta.sin()))
+    .sqrt();
+    let omega = v / rho;
+    let spin = omega * (rho + r * theta.sin()) / r;
+    let model = system! {
+        name: "chain_disk";
+        world = World { n: [0.0, 0.0, -1.0] };
+        px = Prismatic { n: [1.0, 0.0, 0.0] };
+        py = Prismatic { n: [0.0, 1.0, 0.0] };
+        pz = Prismatic { n: [0.0, 0.0, 1.0], state_priority: -100.0 };
+        yaw = Revolute { n: [0.0, 0.0, 1.0] };
+        lean = Revolute { n: [1.0, 0.0, 0.0] };
+        spin = Revolute { n: [0.0, 1.0, 0.0] };
+        wheel = Body { m, I_11: i_long, I_22: i_axis, I_33: i_long };
+        contact = RollingContact { radius: r };
+        connect(world.frame_b, px.frame_a);
+        connect(px.frame_b, py.frame_a);
+        connect(py.frame_b, pz.frame_a);
+        connect(pz.frame_b, yaw.frame_a);
+        connect(yaw.frame_b, lean.frame_a);
+        connect(lean.frame_b, spin.frame_a);
+        connect(spin.frame_b, wheel.frame_a);
+        connect(spin.frame_b, contact.frame_a);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let period = 2.0 * std::f64::consts::PI / omega;
+    let start = [
+        ("px.s", 0.0),
+        ("py.s", 0.0),
+        ("yaw.phi", 0.0),
+        ("lean.phi", -theta),
+        ("spin.phi", 0.0),
+        ("yaw.w", omega),
+        ("lean.w", 0.0),
+        ("spin.w", spin),
+    ];
+    let sol = DaeProblem::new(&ssys, &start, (0.0, period))
+        .unwrap()
+        .solve(&options(period, 40))
+        .unwrap();
+    for k in 0..=40 {
+        let t = k as f64 * period / 40.0;
+        let (x, y, z) = (
+            sol.at("px.s", t).unwrap(),
+            sol.at("py.s", t).unwrap(),
+            sol.at("pz.s", t).unwrap(),
+        );
+        let radius = (x * x + (y - rho).powi(2)).sqrt();
+        assert!((radius - rho).abs() < 1e-7, "radius {radius} at {t}");
+        assert!((z - r * theta.cos()).abs() < 1e-9, "height {z} at {t}");
+    }
 }

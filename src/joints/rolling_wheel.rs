@@ -1,7 +1,7 @@
 //! The ideal rolling wheel (MSL `Joints.RollingWheel`): a wheel rolling without slip on
 //! the ground plane z = 0.
 
-use crate::frames::{Vec3, angular_velocity1, axes_rotations, resolve2};
+use crate::frames::{Vec3, angular_velocity1, axes_rotations, resolve1, resolve2};
 use crate::interfaces::Frame;
 use crate::prelude::*;
 
@@ -105,6 +105,41 @@ component! {
             f_n = f_wheel_0[2];
             f_lat = f_wheel_0.dot(e_lat_0);
             f_long = f_wheel_0.dot(e_long_0);
+            Vec3::zero() = frame_a.f + resolve2(&frame_a.R, f_wheel_0);
+            Vec3::zero() = frame_a.t + resolve2(&frame_a.R, delta_0.cross(f_wheel_0));
+        }
+    }
+}
+
+component! {
+    /// The rolling contact of a wheel whose orientation comes from elsewhere (a wheel
+    /// on a vehicle, closing a kinematic loop through the ground): `frame_a` is fixed in
+    /// the wheel's centre with the axle along its y axis; the wheel of `radius` touches
+    /// the ground plane z = 0 (one holonomic constraint) and its contact point does not
+    /// slip (two non-holonomic ones). The world's gravity must be along -z. Where the
+    /// wheel is the root of its mechanism, use [`RollingWheel`] instead.
+    #[type_name = "MultiBody.Joints.RollingContact"]
+    pub struct RollingContact {
+        /// Radius of the wheel \[m\], default 0.3.
+        parameter radius(min = 0.0): f64 = 0.3;
+        /// The wheel's centre (y axis: the axle).
+        connector frame_a: Frame;
+        /// From the centre to the contact point, resolved in world \[m\].
+        variable delta_0: Vec3;
+        /// The contact force on the wheel, resolved in world \[N\].
+        variable f_wheel_0: Vec3;
+        equation {
+            let e_n_0 = Vec3::constant([0.0, 0.0, 1.0]);
+            let e_axis_0 = resolve1(&frame_a.R, Vec3::constant([0.0, 1.0, 0.0]));
+            // The plane's steepest descent from the centre reaches the ground `radius`
+            // below it: the wheel touches the ground.
+            let upright = sqrt(1.0 - e_axis_0[2] * e_axis_0[2]);
+            delta_0 = (e_n_0 - e_axis_0.scale(e_axis_0[2])).scale(-radius / upright);
+            frame_a.r_0[2] = radius * upright;
+            // The contact point does not slip.
+            let v_contact = der(frame_a.r_0) + angular_velocity1(&frame_a.R).cross(delta_0);
+            0.0 = v_contact[0];
+            0.0 = v_contact[1];
             Vec3::zero() = frame_a.f + resolve2(&frame_a.R, f_wheel_0);
             Vec3::zero() = frame_a.t + resolve2(&frame_a.R, delta_0.cross(f_wheel_0));
         }

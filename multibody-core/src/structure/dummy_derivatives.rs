@@ -86,6 +86,28 @@ pub fn dummy_derivatives_with_intermediates(
     rank: &[StateRank],
     intermediates: &[bool],
 ) -> Result<StateSelection, SelectionError> {
+    match select_levels(red, n_original, rank, intermediates, false) {
+        Err(first @ SelectionError::Singular { .. }) => {
+            // A dummy whose antiderivative is no derivative (an angular acceleration,
+            // the derivative of an intermediate) leaves the next level without the
+            // candidate it needs: try again with the derivatives of derivatives first
+            // on the levels above the last.
+            select_levels(red, n_original, rank, intermediates, true).map_err(|_| first)
+        }
+        other => other,
+    }
+}
+
+/// The selection of [`dummy_derivatives_with_intermediates`]; with `prefer_chains`, the
+/// candidates whose antiderivatives are derivatives themselves go first on every level
+/// but the last.
+fn select_levels(
+    red: &IndexReduction,
+    n_original: usize,
+    rank: &[StateRank],
+    intermediates: &[bool],
+    prefer_chains: bool,
+) -> Result<StateSelection, SelectionError> {
     let n_slots = red.var_diff.len();
     let anti = red.antiderivative_var();
     let counts = red.differentiation_counts(n_original);
@@ -145,8 +167,14 @@ pub fn dummy_derivatives_with_intermediates(
         // scattered in a large model), then sorted with its candidate.
         let mut keyed: Vec<((f64, f64, usize), usize)> =
             candidates.iter().map(|&v| (key(v), v)).collect();
+        // With `prefer_chains`, a candidate that can pass its status down a level.
+        let chained = |v: usize| {
+            !prefer_chains || level == max_level || anti[v].and_then(|a| anti[a]).is_some()
+        };
         keyed.sort_by(|&(kx, x), &(ky, y)| {
-            kx.0.total_cmp(&ky.0)
+            chained(y)
+                .cmp(&chained(x))
+                .then(kx.0.total_cmp(&ky.0))
                 .then(kx.1.total_cmp(&ky.1))
                 .then(ky.2.cmp(&kx.2))
                 .then(y.cmp(&x))
