@@ -76,8 +76,6 @@ component! {
         variable delta_0: Vec3;
         /// Velocity of the centre, resolved in world \[m/s\].
         variable v_0: Vec3;
-        /// Angular velocity of the wheel, resolved in world \[rad/s\].
-        variable w_0: Vec3;
         equation {
             root(frame_a.R);
             frame_a.r_0 = Vec3::new(x, y, z);
@@ -98,7 +96,7 @@ component! {
             r_road_0 = frame_a.r_0 + delta_0;
             // Two non-holonomic ones: the contact point does not slip.
             v_0 = der(frame_a.r_0);
-            w_0 = angular_velocity1(&frame_a.R);
+            let w_0 = angular_velocity1(&frame_a.R);
             let v_contact = v_0 + w_0.cross(delta_0);
             0.0 = v_contact.dot(e_long_0);
             0.0 = v_contact.dot(e_lat_0);
