@@ -98,8 +98,10 @@ component! {
             v_0 = der(frame_a.r_0);
             let w_0 = angular_velocity1(&frame_a.R);
             let v_contact = v_0 + w_0.cross(delta_0);
-            0.0 = v_contact.dot(e_long_0);
-            0.0 = v_contact.dot(e_lat_0);
+            // (Along world x and y, which span the same plane as e_long and e_lat: the
+            // centre's velocity has a constant coefficient in each.)
+            0.0 = v_contact[0];
+            0.0 = v_contact[1];
             f_n = f_wheel_0[2];
             f_lat = f_wheel_0.dot(e_lat_0);
             f_long = f_wheel_0.dot(e_long_0);
