@@ -323,6 +323,7 @@
 //! | [`translational`] | `Mechanics.Translational` |
 //! | [`electrical`] | `Electrical.Analog` |
 //! | [`blocks`] | `Blocks` |
+//! | [`robot_r3`] | `Mechanics.MultiBody.Examples.Systems.RobotR3` (OneAxis, FullRobot) |
 //! | [`loops`] | planar-loop diagnosis for [`SimplifyOptions::planar_loops`] |
 
 extern crate self as multibody;
