@@ -2,6 +2,9 @@
 //! between two shafts (GearConstraint), against closed forms and the conservation of
 //! angular momentum.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use std::f64::consts::PI;
 
 use multibody::blocks::{Constant, RealExpression3, Sine};
@@ -11,14 +14,7 @@ use multibody::prelude::*;
 use multibody::rotational::{Speed, Torque};
 use multibody::world::World;
 
-fn tight(t_end: f64, n: usize) -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
-        ..SolverOptions::default()
-    }
-}
+use common::tight_options as tight;
 
 #[test]
 fn a_motor_on_a_free_carrier_turns_it_backwards() {

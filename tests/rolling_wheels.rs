@@ -1,5 +1,9 @@
-//! The ideal rolling wheel against closed forms: a disk on a steady circle with a
-//! constant lean, and the invariants of a wheel rolling freely.
+//! Rolling wheels against closed forms: a disk on a steady circle with a constant lean
+//! (as a root joint and as a contact on a chain of joints), the invariants of a wheel
+//! rolling freely, and MSL's wheel set pulled by a force.
+
+#[path = "common/mod.rs"]
+mod common;
 
 use multibody::Expr;
 use multibody::joints::{Prismatic, Revolute, RollingContact};
@@ -9,14 +13,7 @@ use multibody::world::World;
 
 const G: f64 = 9.80665;
 
-fn options(t_end: f64, n: usize) -> SolverOptions {
-    SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some((0..=n).map(|k| k as f64 * t_end / n as f64).collect()),
-        ..SolverOptions::default()
-    }
-}
+use common::tight_options as options;
 
 #[test]
 fn a_disk_leaning_into_a_circle_rolls_on_it() {
