@@ -291,6 +291,7 @@ fn simplify_flat(
             derivative_map: &aliased.aliases.derivative_map,
             equations,
             definitions: aliased.definitions,
+            defines_angular_velocity: &aliased.defines_angular_velocity,
             angular_velocity: &aliased.angular_velocity,
             inputs: &input_names,
             show: &show,
@@ -493,6 +494,8 @@ struct AliasStage {
     /// orientation matrix entry): such an equation is solved for it and never
     /// differentiated.
     definitions: Vec<bool>,
+    /// Per kept equation: whether it defines an angular velocity.
+    defines_angular_velocity: Vec<bool>,
     /// The initial equations under the same substitutions, with their texts.
     initial_equations: Vec<(Id, String)>,
 }
@@ -521,6 +524,20 @@ fn alias_stage(flat: &mut crate::model::FlatSystem, inputs: &[usize]) -> AliasSt
                 .is_some_and(|v| has_rule[v as usize])
         })
         .collect();
+    // An equation whose left-hand side is an angular velocity (or an alias of one)
+    // defines it: a joint's propagation of angular velocity.
+    let is_angular_velocity = |v: u32| {
+        let v = v as usize;
+        angular_velocity[v]
+            || aliases.replaced[v].is_some_and(|r| match flat.arena.node(r) {
+                crate::expr::Node::Var(rep) => angular_velocity[*rep as usize],
+                _ => false,
+            })
+    };
+    let defines_angular_velocity: Vec<bool> = kept_equations
+        .iter()
+        .map(|&e| flat.equations[e].lhs_var.is_some_and(is_angular_velocity))
+        .collect();
     // The combined map is built only for a model that has initial equations: it copies
     // every alias.
     let mut initial_equations: Vec<(Id, String)> = Vec::new();
@@ -544,6 +561,7 @@ fn alias_stage(flat: &mut crate::model::FlatSystem, inputs: &[usize]) -> AliasSt
         angular_velocity,
         kept_equations,
         definitions,
+        defines_angular_velocity,
         initial_equations,
     }
 }

@@ -7,7 +7,7 @@ use crate::hash::HashMap;
 use crate::expr::{Arena, Id, IdIndex, Node, NodeMap};
 use crate::model::{EquationText, Variable};
 use crate::structure::dummy_derivatives::{
-    SelectionError, SelectionLevel, StateRank, dummy_derivatives_with_intermediates,
+    SelectionError, SelectionLevel, StateRank, dummy_derivatives_with_definitions,
 };
 use crate::structure::pantelides::{StructurallySingular, pantelides_with_implicit};
 use crate::structure::{BipartiteGraph, Rows};
@@ -200,6 +200,9 @@ pub(crate) struct ReduceInput<'a> {
     pub equations: Vec<(Id, EquationText)>,
     /// Per equation: whether it defines a variable with a derivative rule.
     pub definitions: Vec<bool>,
+    /// Per equation: whether it defines an angular velocity (see
+    /// [`dummy_derivatives_with_definitions`]).
+    pub defines_angular_velocity: &'a [bool],
     /// Per flat variable: whether it is an angular velocity (a variable that the
     /// derivative rules of orientation entries contain).
     pub angular_velocity: &'a [bool],
@@ -256,6 +259,7 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced
         derivative_map,
         equations,
         definitions,
+        defines_angular_velocity,
         angular_velocity,
         inputs,
         show,
@@ -376,7 +380,13 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced
         .map(|s| s.order == 0 && angular_velocity.get(s.var).copied().unwrap_or(false))
         .collect();
     let selection =
-        match dummy_derivatives_with_intermediates(&red, n_original, &rank, &intermediates) {
+        match dummy_derivatives_with_definitions(
+            &red,
+            n_original,
+            &rank,
+            &intermediates,
+            defines_angular_velocity,
+        ) {
             Ok(s) => s,
             Err(SelectionError::Singular {
                 equations,

@@ -86,13 +86,32 @@ pub fn dummy_derivatives_with_intermediates(
     rank: &[StateRank],
     intermediates: &[bool],
 ) -> Result<StateSelection, SelectionError> {
-    match select_levels(red, n_original, rank, intermediates, false) {
+    dummy_derivatives_with_definitions(red, n_original, rank, intermediates, &[])
+}
+
+/// [`dummy_derivatives_with_intermediates`] knowing which original equations define an
+/// intermediate (`defines[e]`, a joint's propagation of angular velocity): where the
+/// companions of a level would include other equations that merely contain
+/// intermediates (a wheel's rolling constraint, which has no counterpart a level
+/// lower), the selection is tried again with the defining ones alone.
+pub fn dummy_derivatives_with_definitions(
+    red: &IndexReduction,
+    n_original: usize,
+    rank: &[StateRank],
+    intermediates: &[bool],
+    defines: &[bool],
+) -> Result<StateSelection, SelectionError> {
+    let context = Context {
+        intermediates,
+        defines,
+    };
+    match select_levels(red, n_original, rank, &context, false) {
         Err(first @ SelectionError::Singular { .. }) => {
             // A dummy whose antiderivative is no derivative (an angular acceleration,
             // the derivative of an intermediate) leaves the next level without the
             // candidate it needs: try again with the derivatives of derivatives first
             // on the levels above the last.
-            select_levels(red, n_original, rank, intermediates, true).map_err(|_| first)
+            select_levels(red, n_original, rank, &context, true).map_err(|_| first)
         }
         other => other,
     }
@@ -101,11 +120,19 @@ pub fn dummy_derivatives_with_intermediates(
 /// The selection of [`dummy_derivatives_with_intermediates`]; with `prefer_chains`, the
 /// candidates whose antiderivatives are derivatives themselves go first on every level
 /// but the last.
+/// What the companions of a level are made of.
+struct Context<'a> {
+    /// Per slot: whether it is an intermediate.
+    intermediates: &'a [bool],
+    /// Per original equation: whether it defines an intermediate (empty: unknown).
+    defines: &'a [bool],
+}
+
 fn select_levels(
     red: &IndexReduction,
     n_original: usize,
     rank: &[StateRank],
-    intermediates: &[bool],
+    context: &Context<'_>,
     prefer_chains: bool,
 ) -> Result<StateSelection, SelectionError> {
     let n_slots = red.var_diff.len();
@@ -187,15 +214,23 @@ fn select_levels(
             // intermediate unknowns of the same order that equations outside the level
             // determine (a frame's angular velocity, propagated from the joints' speeds,
             // is what the derivative of a loop's position constraint contains).
-            if let Some(alternative) = select_with_companions(
-                red,
-                &anti,
-                &counts,
-                level,
-                &equations,
-                &candidates,
-                intermediates,
-            ) {
+            let companions = |defines: &[bool]| {
+                select_with_companions(
+                    red,
+                    &anti,
+                    (&counts, defines),
+                    level,
+                    &equations,
+                    &candidates,
+                    context.intermediates,
+                )
+            };
+            let alternative = companions(&[]).or_else(|| {
+                (!context.defines.is_empty())
+                    .then(|| companions(context.defines))
+                    .flatten()
+            });
+            if let Some(alternative) = alternative {
                 selected = alternative;
             }
         }
@@ -245,7 +280,7 @@ fn select_levels(
 fn select_with_companions(
     red: &IndexReduction,
     anti: &[Option<usize>],
-    counts: &[usize],
+    (counts, defines): (&[usize], &[bool]),
     level: usize,
     equations: &[usize],
     candidates: &[usize],
@@ -258,8 +293,9 @@ fn select_with_companions(
     let is_intermediate = |v: usize| {
         !is_candidate.contains(&v) && marked.get(v).copied().unwrap_or(false) && anti[v].is_none()
     };
+    // (With `defines`, only the equations that define an intermediate.)
     let companions_pool: Vec<usize> = (0..counts.len())
-        .filter(|&e| counts[e] == level - 1)
+        .filter(|&e| counts[e] == level - 1 && defines.get(e).copied().unwrap_or(true))
         .collect();
     let mut rows: Vec<usize> = equations.to_vec();
     let mut intermediates: HashSet<usize> = HashSet::default();
