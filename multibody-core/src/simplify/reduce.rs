@@ -379,44 +379,43 @@ pub(crate) fn reduce(input: ReduceInput<'_>, model: &str) -> Result<IndexReduced
         .iter()
         .map(|s| s.order == 0 && angular_velocity.get(s.var).copied().unwrap_or(false))
         .collect();
-    let selection =
-        match dummy_derivatives_with_definitions(
-            &red,
-            n_original,
-            &rank,
-            &intermediates,
-            defines_angular_velocity,
-        ) {
-            Ok(s) => s,
-            Err(SelectionError::Singular {
-                equations,
-                candidates,
-            }) => {
-                return Err(SimplifyError::singular(
-                    model,
-                    equations.iter().map(|&e| eqs[e].text.to_string()).collect(),
-                    candidates
-                        .iter()
-                        .map(|&v| table.slots[v].name(table.variables))
-                        .collect(),
-                    Vec::new(),
-                ));
-            }
-            Err(SelectionError::AlwaysViolated(slots)) => {
-                return Err(SimplifyError::StateSelection {
-                    model: model.to_string(),
-                    message: format!(
-                        "{} must be states (state_select = always), but the constraints of the \
+    let selection = match dummy_derivatives_with_definitions(
+        &red,
+        n_original,
+        &rank,
+        &intermediates,
+        defines_angular_velocity,
+    ) {
+        Ok(s) => s,
+        Err(SelectionError::Singular {
+            equations,
+            candidates,
+        }) => {
+            return Err(SimplifyError::singular(
+                model,
+                equations.iter().map(|&e| eqs[e].text.to_string()).collect(),
+                candidates
+                    .iter()
+                    .map(|&v| table.slots[v].name(table.variables))
+                    .collect(),
+                Vec::new(),
+            ));
+        }
+        Err(SelectionError::AlwaysViolated(slots)) => {
+            return Err(SimplifyError::StateSelection {
+                model: model.to_string(),
+                message: format!(
+                    "{} must be states (state_select = always), but the constraints of the \
                      model leave fewer degrees of freedom",
-                        slots
-                            .iter()
-                            .map(|&v| format!("`{}`", table.slots[v].name(table.variables)))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                });
-            }
-        };
+                    slots
+                        .iter()
+                        .map(|&v| format!("`{}`", table.slots[v].name(table.variables)))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        }
+    };
     let dynamic = dynamic_candidates(
         table.arena,
         &table.slots,
