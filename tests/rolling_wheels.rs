@@ -256,3 +256,46 @@ fn a_rolling_contact_on_a_chain_of_joints_rolls_on_the_circle() {
         assert!((z - r * theta.cos()).abs() < 1e-9, "height {z} at {t}");
     }
 }
+
+#[test]
+fn a_wheel_set_driven_by_equal_torques_runs_straight() {
+    // Equal torques tau on both wheels (R 0.1, m 0.5, I_axis 0.01; reactions on the
+    // axle's support): no turn, and the axle accelerates at 2 tau / (R M) with
+    // M = 2 m + 2 I_axis / R^2 = 3 kg, the wheels turning at u / R.
+    let tau = 0.3;
+    let model = system! {
+        name: "driven_set";
+        world = World { n: [0.0, 0.0, -1.0] };
+        wheel_set = multibody::parts::RollingWheelSet {
+            R_wheel: 0.1, m_wheel: 0.5, I_wheelAxis: 0.01, I_wheelLong: 0.02, track: 0.5,
+        };
+        drive1 = multibody::rotational::Torque { use_support: true };
+        drive2 = multibody::rotational::Torque { use_support: true };
+        torque = multibody::blocks::Constant { k: tau };
+        connect(torque.y, drive1.tau);
+        connect(torque.y, drive2.tau);
+        connect(drive1.flange, wheel_set.axis1);
+        connect(drive2.flange, wheel_set.axis2);
+        connect(drive1.support, wheel_set.support);
+        connect(drive2.support, wheel_set.support);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let sol = DaeProblem::builder(&ssys, (0.0, 2.0))
+        .build()
+        .unwrap()
+        .solve(&options(2.0, 20))
+        .unwrap();
+    let a = 2.0 * tau / (0.1 * 3.0);
+    for k in 1..=20 {
+        let t = 0.1 * k as f64;
+        let get = |n: &str| sol.at(n, t).unwrap();
+        assert!(
+            (get("wheel_set.x") - 0.5 * a * t * t).abs() < 1e-8,
+            "x at {t}"
+        );
+        assert!(get("wheel_set.y").abs() < 1e-10 && get("wheel_set.phi").abs() < 1e-10);
+        for speed in ["wheel_set.der_theta1", "wheel_set.der_theta2"] {
+            assert!((get(speed) - a * t / 0.1).abs() < 1e-7, "{speed} at {t}");
+        }
+    }
+}
