@@ -364,9 +364,9 @@ pub use multibody_core::simplify::{
     StateCandidates, Statistics,
 };
 pub use multibody_core::solve::{
-    DaeProblem, Event, IdaStats, InitReport, InputSignal, LinearModel, LinearSolver,
-    OperatingPoint, Pole, ProblemBuilder, Segment, Solution, SolverOptions, SteadyStateOptions,
-    Termination, linearize, linearize_in, steady_state,
+    DaeProblem, EnsembleOptions, Event, IdaStats, InitReport, InputSignal, LinearModel,
+    LinearSolver, OperatingPoint, Pole, ProblemBuilder, Segment, Solution, SolverOptions,
+    SteadyStateOptions, Termination, linearize, linearize_in, solve_ensemble, steady_state,
 };
 #[doc = include_str!("../docs/macros/component.md")]
 pub use multibody_macros::component;

@@ -7,6 +7,7 @@
 
 mod builder;
 mod dynamic;
+mod ensemble;
 mod error;
 mod events;
 pub mod ida;
@@ -22,6 +23,7 @@ mod solution;
 mod steady;
 
 pub use builder::ProblemBuilder;
+pub use ensemble::{EnsembleOptions, solve_ensemble};
 pub use error::{InitError, SolutionError, SolveError};
 pub use ida::IdaStats;
 pub use inputs::InputSignal;
