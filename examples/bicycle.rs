@@ -101,6 +101,20 @@ pub fn bicycle() -> System {
     .into()
 }
 
+/// The states the lean-steer motion is linearized in: lean, steer and their rates first.
+pub const STATES: [&str; 10] = [
+    "lean.phi",
+    "steer.phi",
+    "lean.w",
+    "steer.w",
+    "rear_spin.phi",
+    "rear_spin.w",
+    "px.s",
+    "py.s",
+    "yaw.phi",
+    "front_spin.phi",
+];
+
 /// The start of a straight run at `speed` \[m/s\], upright, with the lean rate
 /// `lean_rate` \[rad/s\].
 pub fn straight_run(speed: f64, lean_rate: f64) -> Vec<(&'static str, f64)> {
@@ -131,24 +145,12 @@ fn main() -> Result<(), multibody::Error> {
 
     // The eigenvalues of the lean and steer motion against the speed (the paper's
     // figure 3): linearized in upright, straight running, in lean, steer and their rates.
-    let states = [
-        "lean.phi",
-        "steer.phi",
-        "lean.w",
-        "steer.w",
-        "rear_spin.phi",
-        "rear_spin.w",
-        "px.s",
-        "py.s",
-        "yaw.phi",
-        "front_spin.phi",
-    ];
     let speeds: Vec<f64> = (0..=200).map(|k| 0.05 * f64::from(k)).collect();
     let mut re = vec![Vec::new(); 4];
     let mut im = vec![Vec::new(); 4];
     for &v in &speeds {
         let point = DaeProblem::new(&ssys, &straight_run(v, 0.0), (0.0, 1.0))?.operating_point();
-        let lin = linearize_in(&ssys, &point, &[], &[], &states)?;
+        let lin = linearize_in(&ssys, &point, &[], &[], &STATES)?;
         let a = nalgebra::DMatrix::from_fn(4, 4, |i, j| lin.a[(i, j)]);
         let mut e: Vec<_> = a.complex_eigenvalues().iter().copied().collect();
         e.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));

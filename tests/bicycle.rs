@@ -11,7 +11,7 @@ use multibody::{LinearModel, SimplifyOptions, linearize_in, structural_simplify_
 #[path = "../examples/bicycle.rs"]
 #[allow(dead_code)]
 mod bicycle_example;
-use bicycle_example::{R_REAR, bicycle, straight_run};
+use bicycle_example::{R_REAR, STATES, bicycle, straight_run};
 
 const G: f64 = 9.81;
 
@@ -29,20 +29,6 @@ const K0: [[f64; 2]; 2] = [
     [-2.59951685249872, -0.80329488458618],
 ];
 const K2: [[f64; 2]; 2] = [[0.0, 76.59734589573222], [0.0, 2.65431523794604]];
-
-/// The states in which the model is linearized: lean, steer and their rates first.
-const STATES: [&str; 10] = [
-    "lean.phi",
-    "steer.phi",
-    "lean.w",
-    "steer.w",
-    "rear_spin.phi",
-    "rear_spin.w",
-    "px.s",
-    "py.s",
-    "yaw.phi",
-    "front_spin.phi",
-];
 
 fn simplified() -> SimplifiedSystem {
     let options = SimplifyOptions {

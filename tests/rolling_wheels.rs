@@ -15,12 +15,24 @@ const G: f64 = 9.80665;
 
 use common::tight_options as options;
 
-#[test]
-fn a_disk_leaning_into_a_circle_rolls_on_it() {
-    // A uniform disk (m, R, I_axis = m R^2 / 2, I_long = m R^2 / 4) whose centre runs on
-    // a circle of radius rho at speed v, leaning by theta towards its centre: steady
-    // when v^2 = g rho^2 tan(theta) / (rho (1 + I_axis / (m R^2)) + I_long / (m R)
-    // sin(theta)), with yaw rate v / rho and spin (rho + R sin theta) v / (rho R).
+/// The steady circle of a uniform disk (m 1, R 0.5, I_axis = m R^2 / 2, I_long =
+/// m R^2 / 4) whose centre runs on a circle of radius rho = 1.5 at speed v, leaning by
+/// theta = 0.3 towards its centre: steady when v^2 = g rho^2 tan(theta) / (rho (1 +
+/// I_axis / (m R^2)) + I_long / (m R) sin(theta)), with yaw rate v / rho and spin
+/// (rho + R sin theta) v / (rho R).
+struct SteadyDisk {
+    m: f64,
+    r: f64,
+    rho: f64,
+    theta: f64,
+    i_axis: f64,
+    i_long: f64,
+    v: f64,
+    omega: f64,
+    spin: f64,
+}
+
+fn steady_disk() -> SteadyDisk {
     let (m, r, rho, theta): (f64, f64, f64, f64) = (1.0, 0.5, 1.5, 0.3);
     let (i_axis, i_long) = (m * r * r / 2.0, m * r * r / 4.0);
     let v = (G * rho * rho * theta.tan()
@@ -28,6 +40,33 @@ fn a_disk_leaning_into_a_circle_rolls_on_it() {
     .sqrt();
     let omega = v / rho;
     let spin = omega * (rho + r * theta.sin()) / r;
+    SteadyDisk {
+        m,
+        r,
+        rho,
+        theta,
+        i_axis,
+        i_long,
+        v,
+        omega,
+        spin,
+    }
+}
+
+#[test]
+fn a_disk_leaning_into_a_circle_rolls_on_it() {
+    // The disk as a root joint (see `steady_disk`).
+    let SteadyDisk {
+        m,
+        r,
+        rho,
+        theta,
+        i_axis,
+        i_long,
+        v,
+        omega,
+        spin,
+    } = steady_disk();
     let model = system! {
         name: "disk";
         world = World { n: [0.0, 0.0, -1.0] };
@@ -201,13 +240,17 @@ fn msl_rolling_wheel_set_pulling() {
 fn a_rolling_contact_on_a_chain_of_joints_rolls_on_the_circle() {
     // The disk of the first test, now carried by joints (x, y, z slides, yaw, lean and
     // spin revolutes) with a RollingContact: the same steady circle.
-    let (m, r, rho, theta): (f64, f64, f64, f64) = (1.0, 0.5, 1.5, 0.3);
-    let (i_axis, i_long) = (m * r * r / 2.0, m * r * r / 4.0);
-    let v = (G * rho * rho * theta.tan()
-        / (rho * (1.0 + i_axis / (m * r * r)) + i_long / (m * r) * theta.sin()))
-    .sqrt();
-    let omega = v / rho;
-    let spin = omega * (rho + r * theta.sin()) / r;
+    let SteadyDisk {
+        m,
+        r,
+        rho,
+        theta,
+        i_axis,
+        i_long,
+        omega,
+        spin,
+        ..
+    } = steady_disk();
     let model = system! {
         name: "chain_disk";
         world = World { n: [0.0, 0.0, -1.0] };

@@ -242,7 +242,7 @@ fn find_pre(flat: &FlatSystem, roots: impl Iterator<Item = Id>) -> Vec<Id> {
 }
 
 /// A new parameter of `flat` with value `value` (0 when `None`); its index.
-fn add_parameter(
+pub(super) fn add_parameter(
     flat: &mut FlatSystem,
     name: String,
     description: String,

@@ -7,10 +7,11 @@
 //! them.
 
 use crate::hash::HashSet;
-use crate::model::{FlatEquation, FlatSystem, ModelError, Origin, Parameter, VarKind};
+use crate::model::{FlatEquation, FlatSystem, ModelError, Origin, VarKind};
 use crate::names::closest;
 
 use super::SimplifyOptions;
+use super::events::add_parameter;
 
 /// Turns the inputs that `options` names into parameters of `flat`; returns their
 /// indices among `flat.parameters`, in the order given (named, then open).
@@ -21,17 +22,19 @@ pub(crate) fn augment(
     let variables = input_variables(flat, options)?;
     let mut params = Vec::with_capacity(variables.len());
     for v in variables {
-        let var = &flat.variables[v];
-        let name = var.name.clone();
-        let j = flat.parameters.len();
-        let mut p = Parameter::new(name.clone(), 0.0);
-        p.value = None;
-        p.unit = var.unit.clone();
-        p.description = "an input of the model".into();
-        flat.parameters.push(p);
+        let (name, unit) = (
+            flat.variables[v].name.clone(),
+            flat.variables[v].unit.clone(),
+        );
         // The value until a problem gives one: the variable's start value, else 0.
-        let value = flat.starts[v].unwrap_or_else(|| flat.arena.zero());
-        flat.parameter_values.push(Some(value));
+        let start = flat.starts[v];
+        let j = add_parameter(
+            flat,
+            name.to_string(),
+            "an input of the model".into(),
+            start,
+        );
+        flat.parameters[j].unit = unit;
         let (x, u) = (flat.arena.var(v as u32), flat.arena.param(j as u32));
         let residual = flat.arena.sub(x, u);
         flat.equations.push(FlatEquation {

@@ -117,9 +117,6 @@ pub fn dummy_derivatives_with_definitions(
     }
 }
 
-/// The selection of [`dummy_derivatives_with_intermediates`]; with `prefer_chains`, the
-/// candidates whose antiderivatives are derivatives themselves go first on every level
-/// but the last.
 /// What the companions of a level are made of.
 struct Context<'a> {
     /// Per slot: whether it is an intermediate.
@@ -128,6 +125,9 @@ struct Context<'a> {
     defines: &'a [bool],
 }
 
+/// The selection of [`dummy_derivatives_with_intermediates`]; with `prefer_chains`, the
+/// candidates whose antiderivatives are derivatives themselves go first on every level
+/// but the last.
 fn select_levels(
     red: &IndexReduction,
     n_original: usize,
