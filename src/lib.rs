@@ -365,7 +365,7 @@ pub use multibody_core::simplify::{
 };
 pub use multibody_core::solve::{
     DaeProblem, EnsembleOptions, Event, IdaStats, InitReport, InputSignal, LinearModel,
-    LinearSolver, OperatingPoint, Pole, ProblemBuilder, Segment, Solution, SolverOptions,
+    LinearSolver, Method, OperatingPoint, Pole, ProblemBuilder, Segment, Solution, SolverOptions,
     SteadyStateOptions, Termination, linearize, linearize_in, solve_ensemble, steady_state,
 };
 #[doc = include_str!("../docs/macros/component.md")]

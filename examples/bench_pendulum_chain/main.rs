@@ -22,6 +22,12 @@
 //! diagnostics (operation counts, timed residual evaluations, extended-Jacobian
 //! variants), `BENCH_EVAL_ONLY` (with `BENCH_STATS`) only times residual evaluations,
 //! `BENCH_LINEAR_SOLVER=dense|sparse|plain|dq` forces IDA's linear solver,
+//! After each size's row, a row per integration method (`n`, `method`, `steps`,
+//! `rhs_evals`, `solve_s`; for the explicit methods `baseline_solve_s`,
+//! `baseline_steps` and `solve_ratio` against the articulated-body algorithm of
+//! [`aba`] integrated by the same ARKODE method), and at the end the rows of a stiff
+//! chain of 20 spring-damper-coupled masses; `BENCH_SKIP_METHODS` skips both.
+//!
 //! `BENCH_ONLY_OURS` skips the baseline, `BENCH_PRE_FILL=k` sets
 //! `LinearBlockLimits::pre_elimination_fill` (`none` disables it), `BENCH_DAE_FORM`
 //! leaves the acceleration block to IDA as algebraic unknowns, `BENCH_MAX_TEARING=k` sets
@@ -29,6 +35,8 @@
 //! block torn to 38 variables and solved dense takes 0.41 s against 0.25 s by the
 //! sparse LU).
 
+mod aba;
+mod methods;
 mod rne;
 
 use std::time::Instant;
@@ -317,6 +325,12 @@ fn main() -> Result<(), multibody::Error> {
             evaluated.solve_s,
             evaluated.steps,
         );
+        if std::env::var("BENCH_SKIP_METHODS").is_err() {
+            methods::rows(n, &tunable.ssys, reps)?;
+        }
+    }
+    if std::env::var("BENCH_SKIP_METHODS").is_err() {
+        methods::stiff_rows(20)?;
     }
     if let [.., (n0, c0), (n1, c1)] = compile_rows.as_slice() {
         let nlogn = |n: usize| n as f64 * (n as f64).ln();

@@ -5,31 +5,31 @@
 
 use multibody_core::solve::ida::{DaeFunctions, EvalError};
 
-type V3 = [f64; 3];
-type M3 = [[f64; 3]; 3];
+pub(crate) type V3 = [f64; 3];
+pub(crate) type M3 = [[f64; 3]; 3];
 
-fn add(a: V3, b: V3) -> V3 {
+pub(crate) fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-fn scale(s: f64, a: V3) -> V3 {
+pub(crate) fn scale(s: f64, a: V3) -> V3 {
     [s * a[0], s * a[1], s * a[2]]
 }
-fn cross(a: V3, b: V3) -> V3 {
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ]
 }
-fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 /// `R v`.
-fn mul(r: &M3, v: V3) -> V3 {
+pub(crate) fn mul(r: &M3, v: V3) -> V3 {
     [dot(r[0], v), dot(r[1], v), dot(r[2], v)]
 }
 /// `R^T v`.
-fn mul_t(r: &M3, v: V3) -> V3 {
+pub(crate) fn mul_t(r: &M3, v: V3) -> V3 {
     [
         r[0][0] * v[0] + r[1][0] * v[1] + r[2][0] * v[2],
         r[0][1] * v[0] + r[1][1] * v[1] + r[2][1] * v[2],
@@ -38,7 +38,7 @@ fn mul_t(r: &M3, v: V3) -> V3 {
 }
 /// The rotation from a joint's frame_a to its frame_b by angle `q` about the unit axis
 /// `n`: `v_b = R v_a` with `R = n n^T + (I - n n^T) cos q - [n x] sin q`.
-fn rotation(n: V3, q: f64) -> M3 {
+pub(crate) fn rotation(n: V3, q: f64) -> M3 {
     let (s, c) = q.sin_cos();
     let mut r = [[0.0; 3]; 3];
     for i in 0..3 {

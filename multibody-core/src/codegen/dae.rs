@@ -224,6 +224,14 @@ impl CompiledDae {
         }
     }
 
+    /// Whether the residual is `u' - g(t, u)`: output `k` is `u'_k` minus a value
+    /// that depends on no derivative input (or `u'_k` alone). Such a system is the
+    /// explicit ODE `u' = g(t, u)`, with `g = -F(t, u, 0)` and `dg/du = -dF/du`.
+    pub fn is_explicit_ode(&self) -> bool {
+        let (n, up) = (self.layout.n, self.layout.up(0));
+        self.residual.is_explicit_in(n, up)
+    }
+
     /// Whether the plain and the extended Jacobian have been analysed yet (each is on
     /// its first use): compiling analyses neither, and a solve with specialized
     /// parameters analyses those of the specialized residual only.

@@ -599,6 +599,40 @@ pub(crate) fn lu_solve(m: &[f64], p: &[usize], b: &mut [f64]) {
 }
 
 impl Tape {
+    /// Whether output `k < n` is `inputs[first + k]` minus a register that depends on
+    /// none of the inputs `first..first + n` (or that input alone), and no further
+    /// output reads them: the residual of an explicit ODE when those inputs are the
+    /// derivatives of the unknowns.
+    pub fn is_explicit_in(&self, n: usize, first: usize) -> bool {
+        if self.outputs.len() < n {
+            return false;
+        }
+        let in_range = |slot: u32| (first..first + n).contains(&(slot as usize));
+        // Per register: whether it depends on one of the inputs.
+        let mut dep = vec![false; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            dep[i] = match *op {
+                Op::Input(s) => in_range(s),
+                Op::LsPart => dep[i - 1],
+                _ => {
+                    let mut any = false;
+                    op.for_each_operand(&self.ls, |r| any |= dep[r as usize]);
+                    any
+                }
+            };
+        }
+        let is_input = |r: u32, k: usize| self.ops[r as usize] == Op::Input((first + k) as u32);
+        self.outputs.iter().enumerate().all(|(k, &o)| {
+            if k >= n {
+                return !dep[o as usize];
+            }
+            match self.ops[o as usize] {
+                Op::Sub(a, b) => is_input(a, k) && !dep[b as usize],
+                _ => is_input(o, k),
+            }
+        })
+    }
+
     /// Number of input slots.
     pub fn n_inputs(&self) -> usize {
         self.n_inputs

@@ -176,7 +176,7 @@ pub struct IdaError {
     pub message: String,
 }
 
-fn invalid(t: f64, message: impl Into<String>) -> IdaError {
+pub(super) fn invalid(t: f64, message: impl Into<String>) -> IdaError {
     IdaError {
         t,
         flag: "INVALID_INPUT".into(),
@@ -186,7 +186,7 @@ fn invalid(t: f64, message: impl Into<String>) -> IdaError {
 
 /// Which callback produced an [`EvalError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Callback {
+pub(super) enum Callback {
     Residual,
     Jacobian,
     /// The crossing functions.
@@ -227,8 +227,8 @@ impl CallbackData<'_> {
 
 /// Receives SUNDIALS error messages instead of printing them.
 #[derive(Default)]
-struct ErrSink {
-    last: Option<String>,
+pub(super) struct ErrSink {
+    pub(super) last: Option<String>,
 }
 
 /// Owns every SUNDIALS object of one integration and frees them in Drop.
@@ -380,7 +380,7 @@ impl Guard<'_> {
     }
 }
 
-fn origin_name(o: Callback) -> &'static str {
+pub(super) fn origin_name(o: Callback) -> &'static str {
     match o {
         Callback::Residual => "residual",
         Callback::Jacobian => "Jacobian",
@@ -486,7 +486,7 @@ fn describe_flag(
 /// # Safety
 /// `v` must be a valid serial N_Vector of length `n` that is not mutated while
 /// the slice lives.
-unsafe fn vec_ref<'a>(v: sys::N_Vector, n: usize) -> &'a [f64] {
+pub(super) unsafe fn vec_ref<'a>(v: sys::N_Vector, n: usize) -> &'a [f64] {
     if n == 0 {
         return &[];
     }
@@ -498,7 +498,7 @@ unsafe fn vec_ref<'a>(v: sys::N_Vector, n: usize) -> &'a [f64] {
 ///
 /// # Safety
 /// As [`vec_ref`], and no other reference to the data may be live.
-unsafe fn vec_mut<'a>(v: sys::N_Vector, n: usize) -> &'a mut [f64] {
+pub(super) unsafe fn vec_mut<'a>(v: sys::N_Vector, n: usize) -> &'a mut [f64] {
     if n == 0 {
         return &mut [];
     }
@@ -506,7 +506,7 @@ unsafe fn vec_mut<'a>(v: sys::N_Vector, n: usize) -> &'a mut [f64] {
     unsafe { std::slice::from_raw_parts_mut(sys::N_VGetArrayPointer(v), n) }
 }
 
-fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
+pub(super) fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
     if let Some(s) = p.downcast_ref::<&str>() {
         (*s).to_string()
     } else if let Some(s) = p.downcast_ref::<String>() {
@@ -693,7 +693,7 @@ unsafe extern "C" fn jacobian_cb(
     r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Jacobian, p.as_ref()) })
 }
 
-unsafe extern "C" fn error_handler_cb(
+pub(super) unsafe extern "C" fn error_handler_cb(
     _line: c_int,
     func: *const c_char,
     _file: *const c_char,
@@ -726,7 +726,7 @@ unsafe extern "C" fn error_handler_cb(
     }));
 }
 
-fn validate(
+pub(super) fn validate(
     n: usize,
     t0: f64,
     y0: &[f64],

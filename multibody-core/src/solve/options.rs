@@ -24,6 +24,69 @@ pub enum LinearSolver {
     DenseDifferenceQuotient,
 }
 
+/// The integration method of a solve. The methods other than [`Ida`](Self::Ida) and
+/// [`Auto`](Self::Auto) need a model in ODE form: every unknown a state, every
+/// derivative computed from the states (the mass matrix the identity, every algebraic
+/// block solved inside, as for open chains and trees of bodies, and for loops whose
+/// constraints the compiler solves); a model with algebraic unknowns is refused with an
+/// error that names them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Method {
+    /// For a model in ODE form, [`Verner8`](Self::Verner8), switching to
+    /// [`CvodeBdf`](Self::CvodeBdf) for the rest of the segment where the step size is
+    /// held by the method's stability rather than its accuracy (the model is stiff
+    /// there; checked every 25 steps from the Jacobian's largest eigenvalue, found by
+    /// power iteration, times the step size); [`Ida`](Self::Ida) for a model with
+    /// algebraic unknowns. Not the default: with a few times fewer steps, the points
+    /// of a solution lie further apart, and values between them
+    /// ([`Solution::at`](super::Solution::at)) are interpolated less accurately; ask
+    /// for the times needed in [`SolverOptions::output_times`].
+    Auto,
+    /// The default: SUNDIALS IDA on the DAE `F(t, u, u') = 0`, variable-order BDF
+    /// (orders 1 to 5); any model (DASSL in Dymola, `IDA()` in Sundials.jl).
+    #[default]
+    Ida,
+    /// SUNDIALS CVODE, variable-order BDF (orders 1 to 5) with Newton iterations on the
+    /// compiled Jacobian: stiff models (`CVODE_BDF()` in Sundials.jl, like `FBDF`).
+    CvodeBdf,
+    /// SUNDIALS CVODE, variable-order Adams-Moulton (orders 1 to 12) with fixed-point
+    /// iterations: smooth non-stiff models at tight tolerances (`CVODE_Adams()`).
+    CvodeAdams,
+    /// ARKODE's explicit Dormand-Prince 5(4), `ARKODE_DORMAND_PRINCE_7_4_5` (`DP5`,
+    /// Dymola's `Dopri45`, MATLAB's `ode45`).
+    DormandPrince5,
+    /// ARKODE's explicit Verner 6(5), `ARKODE_VERNER_9_5_6` (`Vern6`).
+    Verner6,
+    /// ARKODE's explicit Verner 7(6), `ARKODE_VERNER_10_6_7` (`Vern7`).
+    Verner7,
+    /// ARKODE's explicit Verner 8(7), `ARKODE_VERNER_13_7_8` (`Vern8`; the order of
+    /// `DOP853`).
+    Verner8,
+    /// ARKODE's explicit Verner 9(8), `ARKODE_VERNER_16_8_9` (`Vern9`).
+    Verner9,
+    /// ARKODE's diagonally implicit Kvaerno 5(4), `ARKODE_KVAERNO_7_4_5` (`Kvaerno5`),
+    /// L-stable, with Newton iterations on the compiled Jacobian: stiff models.
+    Kvaerno5,
+}
+
+impl Method {
+    /// The ODE method this is (`None` for IDA and the automatic choice).
+    pub(crate) fn ode(self) -> Option<super::ode::OdeMethod> {
+        use super::ode::OdeMethod as O;
+        Some(match self {
+            Method::Auto | Method::Ida => return None,
+            Method::CvodeBdf => O::CvodeBdf,
+            Method::CvodeAdams => O::CvodeAdams,
+            Method::DormandPrince5 => O::Explicit("ARKODE_DORMAND_PRINCE_7_4_5"),
+            Method::Verner6 => O::Explicit("ARKODE_VERNER_9_5_6"),
+            Method::Verner7 => O::Explicit("ARKODE_VERNER_10_6_7"),
+            Method::Verner8 => O::Explicit("ARKODE_VERNER_13_7_8"),
+            Method::Verner9 => O::Explicit("ARKODE_VERNER_16_8_9"),
+            Method::Kvaerno5 => O::Implicit("ARKODE_KVAERNO_7_4_5"),
+        })
+    }
+}
+
 /// Options of [`DaeProblem::solve`](super::DaeProblem::solve).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolverOptions {
@@ -61,6 +124,8 @@ pub struct SolverOptions {
     /// agree with the unspecialized functions up to rounding and the folding rules of
     /// `Tape::specialize` (default true).
     pub specialize_parameters: bool,
+    /// The integration method (default [`Method::Ida`]).
+    pub method: Method,
 }
 
 impl Default for SolverOptions {
@@ -77,6 +142,7 @@ impl Default for SolverOptions {
             linear_solver: LinearSolver::Auto,
             project_outputs: true,
             specialize_parameters: true,
+            method: Method::Ida,
         }
     }
 }

@@ -16,7 +16,8 @@ use super::ida::IdaStats;
 use super::ida::{self, DaeFunctions, EvalError, IdaMatrix, IdaSettings, OutputMode};
 use super::init::{InitInput, initialize};
 use super::inputs::Drivers;
-use super::options::{LinearSolver, SolverOptions};
+use super::ode;
+use super::options::{LinearSolver, Method, SolverOptions};
 use super::solution::{Segment, Solution, SolutionParts, Termination};
 
 /// What the initialization did.
@@ -1041,7 +1042,14 @@ impl<'a> DaeProblem<'a> {
     ) -> Result<SegmentEnd, Error> {
         let sys = self.sys;
         let n = u0.len();
+        let method = ode_method(sys, c, options.method).map_err(|message| SolveError {
+            model: sys.model.name.clone(),
+            t: t0,
+            flag: "BAD_METHOD".into(),
+            message,
+        })?;
         let (settings, extended) = ida_settings(sys, c, options);
+        let extended = extended && method.is_none();
         let output = match output_times {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
@@ -1090,26 +1098,41 @@ impl<'a> DaeProblem<'a> {
             decision.is_none()
         };
         let dynamic = !sys.dynamic.groups.is_empty() || watched;
-        let result = ida::integrate_monitored(
-            &mut f,
-            t0,
-            u0,
-            up0,
-            &settings,
-            &output,
-            &mut |t, u, up| {
-                if run.points_left == 0 {
-                    exceeded = Some(t);
-                    return false;
-                }
-                run.points_left -= 1;
-                run.t.push(t);
-                run.u.extend_from_slice(u);
-                run.up.extend_from_slice(up);
-                true
-            },
-            if dynamic { Some(&mut monitor) } else { None },
-        );
+        let mut on_output = |t: f64, u: &[f64], up: &[f64]| {
+            if run.points_left == 0 {
+                exceeded = Some(t);
+                return false;
+            }
+            run.points_left -= 1;
+            run.t.push(t);
+            run.u.extend_from_slice(u);
+            run.up.extend_from_slice(up);
+            true
+        };
+        type Monitor<'m> = Option<&'m mut dyn FnMut(f64, &[f64], &[f64]) -> bool>;
+        let monitor: Monitor<'_> = if dynamic { Some(&mut monitor) } else { None };
+        let result = match method {
+            None => ida::integrate_monitored(
+                &mut f,
+                t0,
+                u0,
+                up0,
+                &settings,
+                &output,
+                &mut on_output,
+                monitor,
+            ),
+            Some(m) => ode::integrate_monitored(
+                &mut ode::ExplicitDae::new(&mut f),
+                m,
+                t0,
+                u0,
+                &settings,
+                &output,
+                &mut on_output,
+                monitor,
+            ),
+        };
         if let Some(t) = exceeded {
             return Err(SolveError {
                 model: sys.model.name.clone(),
@@ -1136,7 +1159,15 @@ impl<'a> DaeProblem<'a> {
                     message: e.message.clone(),
                 }
                 .into();
-                let singular = matches!(e.flag.as_str(), "IDA_CONV_FAIL" | "IDA_ERR_FAIL");
+                let singular = matches!(
+                    e.flag.as_str(),
+                    "IDA_CONV_FAIL"
+                        | "IDA_ERR_FAIL"
+                        | "CV_CONV_FAILURE"
+                        | "CV_ERR_FAILURE"
+                        | "ARK_CONV_FAILURE"
+                        | "ARK_ERR_FAILURE"
+                );
                 if dynamic && singular {
                     // Points reported after the last step (interpolated outputs) are
                     // dropped: the integration is taken up again from that step.
@@ -1403,6 +1434,49 @@ pub(super) fn specialized_for(
     Some((key, sys.compiled.specialize_partly(&values)))
 }
 
+/// The ODE method a solve of `sys` with the compiled functions `c` uses for `method`:
+/// `None` for IDA; an error naming the algebraic unknowns where an ODE method is asked
+/// of a model that is not an ODE.
+pub(super) fn ode_method(
+    sys: &SimplifiedSystem,
+    c: &CompiledDae,
+    method: Method,
+) -> Result<Option<ode::OdeMethod>, String> {
+    if method == Method::Ida || sys.sorted.mass_matrix_diagonal.is_empty() {
+        return Ok(None);
+    }
+    let explicit = sys.sorted.mass_matrix_diagonal.iter().all(|&m| m == 1.0) && c.is_explicit_ode();
+    match (method, explicit) {
+        (Method::Auto, true) => Ok(Some(ode::OdeMethod::Auto)),
+        (Method::Auto, false) => Ok(None),
+        (m, true) => Ok(m.ode()),
+        (m, false) => {
+            let names = sys.unknowns();
+            let algebraic: Vec<&str> = names
+                .iter()
+                .zip(&sys.sorted.mass_matrix_diagonal)
+                .filter(|(_, m)| **m != 1.0)
+                .map(|(name, _)| name.as_str())
+                .take(5)
+                .collect();
+            Err(if algebraic.is_empty() {
+                format!(
+                    "Method::{m:?} needs the model as an ODE, but some state derivatives \
+                     are not computed from the states alone (they enter equations solved \
+                     together with them); use Method::Ida or Method::Auto"
+                )
+            } else {
+                format!(
+                    "Method::{m:?} needs the model as an ODE, but it has algebraic unknowns \
+                     ({}{}); use Method::Ida or Method::Auto",
+                    algebraic.join(", "),
+                    if algebraic.len() == 5 { ", ..." } else { "" }
+                )
+            })
+        }
+    }
+}
+
 /// IDA's settings for `sys` with the compiled functions `c` (the system's own, or
 /// specialized to parameter values), and whether the extended Jacobian is used.
 pub(super) fn ida_settings(
@@ -1515,12 +1589,18 @@ impl<'c> CompiledFunctions<'c> {
                 .iter()
                 .map(|&k| {
                     let r = &relations[k];
+                    // A crossing function that starts at its zero starts on the side
+                    // of its relation's value: by the hysteresis when only discrete
+                    // equations read it, else by the least positive number (exactly at
+                    // zero, it would be inactive where the integration starts, and its
+                    // leaving zero would go unseen).
                     let value = self.inputs[self.layout.param(r.parameter)] != 0.0;
-                    if r.only_discrete {
-                        r.hysteresis(value, super::events::HYSTERESIS)
+                    let band = if r.only_discrete {
+                        super::events::HYSTERESIS
                     } else {
-                        0.0
-                    }
+                        f64::MIN_POSITIVE
+                    };
+                    r.hysteresis(value, band)
                 })
                 .collect();
             let started = false;

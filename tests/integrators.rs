@@ -1,0 +1,302 @@
+//! Every integration method against closed forms: the period of a large-amplitude
+//! pendulum, bounces at their closed-form times (events), output times, parameters
+//! changed without recompiling; the automatic choice on a non-stiff and a stiff model;
+//! the error of an ODE method asked of a model with algebraic unknowns.
+
+use multibody::blocks::Constant;
+use multibody::joints::Revolute;
+use multibody::parts::{Body, FixedTranslation};
+use multibody::prelude::*;
+use multibody::translational::{Damper, Fixed, Force, Mass, Spring};
+use multibody::world::World;
+use multibody::{Error, Method, Solution};
+
+const ALL: [Method; 10] = [
+    Method::Auto,
+    Method::Ida,
+    Method::CvodeBdf,
+    Method::CvodeAdams,
+    Method::DormandPrince5,
+    Method::Verner6,
+    Method::Verner7,
+    Method::Verner8,
+    Method::Verner9,
+    Method::Kvaerno5,
+];
+
+/// A point mass on a massless link of tunable length `link.r[1]`.
+fn pendulum() -> System {
+    system! {
+        name: "pendulum";
+        world = World::default();
+        joint = Revolute::default();
+        link = FixedTranslation { r: [1.0, 0.0, 0.0] };
+        bob = Body { m: 1.0, I_11: 0.0, I_22: 0.0, I_33: 0.0 };
+        connect(world.frame_b, joint.frame_a);
+        connect(joint.frame_b, link.frame_a);
+        connect(link.frame_b, bob.frame_a);
+    }
+    .into()
+}
+
+/// The complete elliptic integral of the first kind K(k), by the arithmetic-geometric
+/// mean.
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
+    while (a - b).abs() > 1e-16 * a {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
+fn options(method: Method, rtol: f64) -> SolverOptions {
+    SolverOptions {
+        method,
+        rtol,
+        atol: rtol * 1e-2,
+        ..SolverOptions::default()
+    }
+}
+
+#[test]
+fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
+    // Released at rest from phi0 below the horizontal (the link along x, gravity -y):
+    // the period of the swing is 4 sqrt(L/g) K(sin(amplitude / 2)), where the amplitude
+    // is measured from the lowest point (phi = -pi/2).
+    let ssys = structural_simplify(&pendulum()).unwrap();
+    let g = 9.80665;
+    for length in [1.0f64, 0.5] {
+        let phi0 = 0.3;
+        let amplitude = phi0 + std::f64::consts::FRAC_PI_2;
+        let period = 4.0 * (length / g).sqrt() * elliptic_k((amplitude / 2.0).sin());
+        for method in ALL {
+            let sol = DaeProblem::new(
+                &ssys,
+                &[("link.r[1]", length), ("joint.phi", phi0), ("joint.w", 0.0)],
+                (0.0, period),
+            )
+            .unwrap()
+            .solve(&SolverOptions {
+                output_times: Some(vec![0.25 * period, 0.5 * period, period]),
+                ..options(method, 1e-9)
+            })
+            .unwrap();
+            let phi = sol.get("joint.phi").unwrap();
+            let w = sol.get("joint.w").unwrap();
+            // t0, a quarter (the lowest point), half (the other side), the period.
+            assert_eq!(sol.t().len(), 4, "{method:?}");
+            let bottom = -std::f64::consts::FRAC_PI_2;
+            let other = bottom - amplitude;
+            let tol = 2e-6;
+            assert!(
+                (phi[1] - bottom).abs() < tol,
+                "{method:?}: {}",
+                phi[1] - bottom
+            );
+            assert!(
+                (phi[2] - other).abs() < tol,
+                "{method:?}: {}",
+                phi[2] - other
+            );
+            assert!((phi[3] - phi0).abs() < tol, "{method:?}: {}", phi[3] - phi0);
+            assert!(w[3].abs() < 10.0 * tol, "{method:?}: w = {}", w[3]);
+            // The speed at the bottom from energy: w^2 L^2 = 2 g L sin(amplitude)...
+            let w_bottom = (2.0 * g * (1.0 - amplitude.cos()) / length).sqrt();
+            assert!(
+                (w[1].abs() - w_bottom).abs() < 10.0 * tol,
+                "{method:?}: {} vs {w_bottom}",
+                w[1]
+            );
+        }
+    }
+}
+
+component! {
+    /// A ball bouncing on the ground `h = 0` with a coefficient of restitution `e`.
+    pub struct BouncingBall {
+        /// Gravity \[m/s2\].
+        parameter g: f64 = 9.81;
+        /// Coefficient of restitution.
+        parameter e: f64 = 0.8;
+        /// Height \[m\].
+        variable h(start = 1.0, fixed = true): Real;
+        /// Velocity \[m/s\].
+        variable v(start = 0.0, fixed = true): Real;
+        equation {
+            der(h) = v;
+            der(v) = -g;
+            when lt(h, 0.0) {
+                reinit(v, -e * pre(v));
+            }
+        }
+    }
+}
+
+#[test]
+fn every_method_finds_the_bounces_at_their_closed_form_times() {
+    let (g, e, h0): (f64, f64, f64) = (9.81, 0.8, 1.0);
+    let mut model = System::new("bouncing");
+    model.add("ball", &BouncingBall::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let t1 = (2.0 * h0 / g).sqrt();
+    let mut impacts = vec![t1];
+    for k in 1..5 {
+        impacts.push(impacts[k - 1] + 2.0 * e.powi(k as i32) * t1);
+    }
+    let t_end = impacts[4] + 0.05;
+    for method in ALL {
+        let sol = DaeProblem::new(&ssys, &[], (0.0, t_end))
+            .unwrap()
+            .solve(&options(method, 1e-8))
+            .unwrap();
+        let hits: Vec<f64> = sol.events().iter().map(|ev| ev.t).collect();
+        assert!(hits.len() >= 5, "{method:?}: {:?}", sol.events());
+        for (k, want) in impacts.iter().enumerate() {
+            assert!(
+                hits.iter().any(|t| (t - want).abs() < 1e-7),
+                "{method:?}: impact {k} at {want} not among {hits:?}"
+            );
+        }
+        let v_end = sol.final_value("ball.v").unwrap();
+        let exact = e.powi(5) * g * t1 - g * (t_end - impacts[4]);
+        assert!(
+            (v_end - exact).abs() < 1e-6,
+            "{method:?}: v = {v_end}, exact {exact}"
+        );
+    }
+}
+
+/// `n` masses of 1 kg in a row from a fixed wall, each joined to the one before by a
+/// spring `c` and a damper `d` in parallel, the last pulled by a constant force `force`.
+fn stiff_chain(n: usize, c: f64, d: f64, force: f64) -> System {
+    let mut m = System::new("stiff_chain");
+    let wall = m.add_typed("wall", &Fixed::default());
+    let mut prev = wall.flange;
+    for k in 1..=n {
+        let spring = m.add_typed(
+            &format!("spring{k}"),
+            &Spring {
+                c,
+                ..Default::default()
+            },
+        );
+        let damper = m.add_typed(&format!("damper{k}"), &Damper { d });
+        let mass = m.add_typed(&format!("mass{k}"), &Mass::default());
+        m.connect_handles(&prev, &spring.flange_a);
+        m.connect_handles(&prev, &damper.flange_a);
+        m.connect_handles(&spring.flange_b, &mass.flange_a);
+        m.connect_handles(&damper.flange_b, &mass.flange_a);
+        prev = mass.flange_b;
+    }
+    let pull = m.add_typed("pull", &Force::default());
+    let value = m.add_typed("value", &Constant { k: force });
+    m.connect_handles(&value.y, &pull.f);
+    m.connect_handles(&pull.flange, &prev);
+    m
+}
+
+fn steps(sol: &Solution) -> u64 {
+    sol.statistics().steps
+}
+
+#[test]
+fn the_automatic_choice_stays_explicit_on_a_smooth_model_and_takes_bdf_on_a_stiff_one() {
+    // Smooth: the pendulum. Auto takes Verner 8(7) throughout: the same steps.
+    let ssys = structural_simplify(&pendulum()).unwrap();
+    let solve = |method| {
+        DaeProblem::new(&ssys, &[("joint.phi", 0.3)], (0.0, 10.0))
+            .unwrap()
+            .solve(&options(method, 1e-6))
+            .unwrap()
+    };
+    let (auto, vern8, ida) = (
+        solve(Method::Auto),
+        solve(Method::Verner8),
+        solve(Method::Ida),
+    );
+    assert_eq!(steps(&auto), steps(&vern8));
+    assert!(
+        5 * steps(&auto) < steps(&ida),
+        "Verner 8(7) {} steps, IDA {}",
+        steps(&auto),
+        steps(&ida)
+    );
+
+    // Stiff: spring-dampers of 1e4 N/m and 300 N s/m between masses of 1 kg (modes from
+    // about -1100 /s to a slow one decaying at 12 /s). The static stretch of every spring
+    // is force / c, so mass k rests at k force / c.
+    let (n, c, d, force) = (5, 1e4, 300.0, 50.0);
+    let ssys = structural_simplify(&stiff_chain(n, c, d, force)).unwrap();
+    let solve = |method| {
+        DaeProblem::new(&ssys, &[], (0.0, 10.0))
+            .unwrap()
+            .solve(&options(method, 1e-6))
+            .unwrap()
+    };
+    let (auto, vern7, bdf) = (
+        solve(Method::Auto),
+        solve(Method::Verner7),
+        solve(Method::CvodeBdf),
+    );
+    for sol in [&auto, &vern7, &bdf] {
+        for k in 1..=n {
+            let s = sol.final_value(format!("mass{k}.s").as_str()).unwrap();
+            let exact = k as f64 * force / c;
+            assert!((s - exact).abs() < 1e-7, "mass{k}.s = {s}, exact {exact}");
+        }
+    }
+    assert!(
+        5 * steps(&bdf) < steps(&vern7),
+        "BDF {} steps, Verner 7(6) {}",
+        steps(&bdf),
+        steps(&vern7)
+    );
+    assert!(
+        3 * steps(&auto) < steps(&vern7),
+        "Auto {} steps, Verner 7(6) {}",
+        steps(&auto),
+        steps(&vern7)
+    );
+}
+
+component! {
+    /// `x' = -y` with `y` the root of `y^3 + y = x`: a nonlinear equation the
+    /// integrator solves (an algebraic unknown).
+    pub struct Implicit {
+        /// The state.
+        variable x(start = 2.0, fixed = true): Real;
+        /// The algebraic unknown.
+        variable y(start = 1.0): Real;
+        equation {
+            der(x) = -y;
+            y * y * y + y = x;
+        }
+    }
+}
+
+#[test]
+fn an_ode_method_on_a_model_with_algebraic_unknowns_is_an_error_naming_them() {
+    let mut model = System::new("implicit");
+    model.add("m", &Implicit::default());
+    let ssys = structural_simplify(&model).unwrap();
+    assert!(
+        ssys.mass_matrix_diagonal().contains(&0.0),
+        "{:?}",
+        ssys.unknowns()
+    );
+    let problem = DaeProblem::new(&ssys, &[], (0.0, 1.0)).unwrap();
+    let ida = problem.solve(&options(Method::Ida, 1e-6)).unwrap();
+    let auto = problem.solve(&options(Method::Auto, 1e-6)).unwrap();
+    assert_eq!(auto.t(), ida.t(), "Auto takes IDA for a DAE");
+    for method in [Method::Verner7, Method::CvodeBdf, Method::Kvaerno5] {
+        let err = problem.solve(&options(method, 1e-6)).unwrap_err();
+        let Error::Solve(e) = &err else {
+            panic!("{err}");
+        };
+        assert_eq!(e.flag, "BAD_METHOD", "{err}");
+        assert!(
+            err.to_string().contains("algebraic unknowns (m.y)"),
+            "{err}"
+        );
+    }
+}
