@@ -300,3 +300,36 @@ fn an_ode_method_on_a_model_with_algebraic_unknowns_is_an_error_naming_them() {
         );
     }
 }
+
+component! {
+    /// `y' = sqrt(1 - t)`: not a number from t = 1 on.
+    pub struct RootOfOneMinusTime {
+        /// Time.
+        variable x(start = 0.0, fixed = true): Real;
+        /// The integral.
+        variable y(start = 0.0, fixed = true): Real;
+        equation {
+            der(x) = 1.0;
+            der(y) = sqrt(1.0 - x);
+        }
+    }
+}
+
+#[test]
+fn every_method_fails_where_the_derivatives_stop_being_numbers() {
+    let mut model = System::new("root");
+    model.add("r", &RootOfOneMinusTime::default());
+    let ssys = structural_simplify(&model).unwrap();
+    let problem = DaeProblem::new(&ssys, &[], (0.0, 2.0)).unwrap();
+    for method in ALL {
+        let err = problem.solve(&options(method, 1e-6)).unwrap_err();
+        let Error::Solve(e) = &err else {
+            panic!("{method:?}: {err}");
+        };
+        assert!((e.t - 1.0).abs() < 0.05, "{method:?}: {err}");
+        assert!(
+            err.to_string().contains("is not finite"),
+            "{method:?}: {err}"
+        );
+    }
+}

@@ -131,12 +131,15 @@ pub enum OutputMode {
     },
 }
 
-/// Integrator statistics at the end of an integration.
+/// Integrator statistics at the end of an integration (of IDA, and of CVODE and ARKODE
+/// with the same meanings: see [`ode`](super::ode)).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct IdaStats {
     /// Internal steps taken.
     pub steps: u64,
-    /// Residual evaluations, including those for difference-quotient Jacobians.
+    /// Residual evaluations, including those for difference-quotient Jacobians (for
+    /// CVODE and ARKODE: right-hand side evaluations, each one evaluation of the
+    /// residual; one more per reported point, for its derivatives, is not counted).
     pub residual_evals: u64,
     /// Jacobian evaluations (analytic or difference quotient).
     pub jacobian_evals: u64,

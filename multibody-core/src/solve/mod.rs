@@ -1,9 +1,10 @@
-//! Solving: consistent initialization, integration with SUNDIALS IDA, and solutions.
+//! Solving: consistent initialization, integration with SUNDIALS, and solutions.
 //!
 //! [`DaeProblem::new`] evaluates parameters and start values and runs the
 //! initialization (its own problem at t0, solved by damped Newton); [`DaeProblem::solve`]
-//! integrates with IDA (the only FFI of the project lives in [`ida`] and the linear
-//! solver glue) and returns a [`Solution`].
+//! integrates with IDA, or for a model in ODE form with CVODE or ARKODE
+//! ([`SolverOptions::method`]), and returns a [`Solution`]. The only FFI of the project
+//! lives in [`ida`], [`ode`] and the linear solver glue.
 
 mod builder;
 mod dynamic;
