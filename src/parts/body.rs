@@ -104,6 +104,11 @@ component! {
         structural z_0_fixed: bool = false;
         /// Priority of `r_0` and `v_0` as states (MSL: avoid).
         structural position_state_priority: f64 = StateSelect::Avoid.priority();
+        /// Priority of the orientation states (angles or quaternion) when the body is a
+        /// root, default 1000 (always: MSL's `enforceStates`). Lower it for a body that
+        /// no joint orients but kinematic loops hold (the platform of a parallel
+        /// mechanism), whose orientation the loops determine.
+        structural orientation_state_priority: f64 = 1000.0;
         /// Radius of the sphere drawn at the centre of mass \[m\] (0 hides it).
         structural radius: f64 = 0.05;
         /// Colour of the sphere when rendered, RGB in 0..1 (MSL's body colour).
@@ -123,15 +128,15 @@ component! {
         /// Gravity acceleration at the centre of mass, resolved in world \[m/s2\].
         variable g_0: Vec3;
         /// Orientation angles when the body is a root (0 otherwise) \[rad\].
-        variable phi(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi), fixed = angles_fixed && orientation_states == OrientationStates::Cardan, state_priority = 1000.0): Vec3;
+        variable phi(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi), fixed = angles_fixed && orientation_states == OrientationStates::Cardan, state_priority = orientation_state_priority): Vec3;
         /// Derivatives of the angles \[rad/s\].
-        variable phi_d(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi_d), state_priority = 1000.0): Vec3;
+        variable phi_d(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).phi_d), state_priority = orientation_state_priority): Vec3;
         /// Second derivatives of the angles \[rad/s2\].
         variable phi_dd: Vec3;
         /// Vector part of the quaternion when the body is a root (0 otherwise).
-        variable q_v(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q_v()), fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = 1000.0): Vec3;
+        variable q_v(start = given(StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q_v()), fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = orientation_state_priority): Vec3;
         /// Scalar part of the quaternion when the body is a root (1 otherwise).
-        variable q_4(start = StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q[3], fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = 1000.0): Real;
+        variable q_4(start = StartOrientation::new(sequence_start, angles_start, sequence_angle_states, w_0_start, z_0_start).q[3], fixed = angles_fixed && orientation_states == OrientationStates::Quaternion, state_priority = orientation_state_priority): Real;
         equation {
             assert(
                 valid_sequence(sequence_start),

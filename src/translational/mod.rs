@@ -203,6 +203,49 @@ component! {
 }
 
 component! {
+    /// Forces the flange to follow the reference position `s_ref` (MSL
+    /// `Translational.Sources.Position`): exactly (the reference is differentiated, so it
+    /// must be smooth and cannot be a model input), or filtered by a critically damped
+    /// 2nd-order Bessel filter of cut-off frequency `f_crit` whose states are the
+    /// flange's position and speed, and which starts at the reference position (an
+    /// initial equation, as MSL).
+    #[type_name = "Translational.Position"]
+    pub struct Position {
+        /// Follow the reference exactly rather than filtered (default false).
+        structural exact: bool = false;
+        /// Cut-off frequency of the filter when not exact [Hz] (default 50).
+        parameter f_crit: f64 = 50.0;
+        /// Reference position [m].
+        connector s_ref: RealInput;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Position of the flange [m].
+        variable s(state_priority = 10.0): Real;
+        /// Speed of the flange [m/s].
+        variable v(state_priority = 10.0): Real;
+        /// Acceleration of the flange [m/s2].
+        variable a: Real;
+        initial_equation {
+            if !exact {
+                s = s_ref;
+            }
+        }
+        equation {
+            s = flange.s;
+            v = der(s);
+            a = der(v);
+            if exact {
+                s = s_ref;
+            } else {
+                // 2nd-order critically damped Bessel filter (af = 1.3617, bf = 0.6180).
+                a = ((s_ref - s) * (2.0 * PI * f_crit) - 1.3617 * v)
+                    * ((2.0 * PI * f_crit) / 0.6180);
+            }
+        }
+    }
+}
+
+component! {
     /// Measures the absolute position of a flange (MSL
     /// `Translational.Sensors.PositionSensor`).
     #[type_name = "Translational.PositionSensor"]

@@ -1,0 +1,150 @@
+//! The seed's hexapod: the actuator forces at rest equal an independent static balance
+//! of the platform; driven by the inverse kinematics of a heaving and rolling motion,
+//! the platform follows that motion (the model's forward kinematics) and the actuator
+//! forces equal the platform's Newton-Euler equations for it.
+
+#[path = "../examples/hexapod.rs"]
+#[allow(dead_code)]
+mod hexapod_example;
+use hexapod_example::{
+    CM, G, I_ROLL, LEGS, M_PLATFORM, Motion, base_corner, guesses, hexapod, static_leg_forces,
+};
+use multibody::prelude::*;
+
+fn solve(motion: Motion, t_end: f64) -> Solution {
+    let ssys = structural_simplify(&hexapod(motion)).unwrap();
+    let guesses = guesses(motion);
+    let named: Vec<(&str, f64)> = guesses.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    DaeProblem::new_with_guesses(&ssys, &[], &named, (0.0, t_end))
+        .unwrap()
+        .solve(&SolverOptions {
+            rtol: 1e-8,
+            atol: 1e-10,
+            ..SolverOptions::default().with_output_interval(0.0, t_end, 0.1)
+        })
+        .unwrap()
+}
+
+fn solve6(mut a: [[f64; 7]; 6]) -> [f64; 6] {
+    for k in 0..6 {
+        let p = (k..6)
+            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
+            .unwrap();
+        a.swap(k, p);
+        for i in k + 1..6 {
+            let f = a[i][k] / a[k][k];
+            for j in k..7 {
+                a[i][j] -= f * a[k][j];
+            }
+        }
+    }
+    let mut x = [0.0; 6];
+    for k in (0..6).rev() {
+        x[k] = (a[k][6] - (k + 1..6).map(|j| a[k][j] * x[j]).sum::<f64>()) / a[k][k];
+    }
+    x
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[test]
+fn the_actuators_hold_the_platform_as_the_static_balance_says() {
+    let sol = solve(Motion::REST, 1.0);
+    let balance = static_leg_forces();
+    for (i, want) in balance.iter().enumerate() {
+        let f = sol
+            .get(format!("leg{}.actuator.f", i + 1).as_str())
+            .unwrap();
+        for got in [f[0], *f.last().unwrap()] {
+            assert!(
+                (got - want).abs() < 1e-6 * want.abs(),
+                "leg{}: {got} vs {want}",
+                i + 1
+            );
+        }
+    }
+    // Off-centre mass: the legs carry unequal loads.
+    let spread = balance.iter().fold(0.0f64, |m, f| m.max(*f))
+        - balance.iter().fold(f64::MAX, |m, f| m.min(*f));
+    assert!(spread > 10.0, "{balance:?}");
+}
+
+#[test]
+fn the_platform_follows_the_motion_and_the_forces_are_its_newton_euler_equations() {
+    let motion = Motion {
+        heave: 0.2,
+        roll: 0.1,
+        f: 0.5,
+    };
+    let sol = solve(motion, 2.0);
+    let w = 2.0 * PI * motion.f;
+    let get = |name: String| sol.get(name.as_str()).unwrap();
+    let r0: Vec<Vec<f64>> = (1..=3).map(|j| get(format!("platform.r_0[{j}]"))).collect();
+    let t22 = get("platform.frame_a.R.T[2,2]".into());
+    let t23 = get("platform.frame_a.R.T[2,3]".into());
+    let forces: Vec<Vec<f64>> = (1..=6).map(|i| get(format!("leg{i}.actuator.f"))).collect();
+    for (k, &t) in sol.t().iter().enumerate() {
+        // Forward kinematics against the prescribed pose.
+        let (c, roll) = motion.pose(t);
+        for j in 0..3 {
+            assert!(
+                (r0[j][k] - c[j]).abs() < 1e-7,
+                "t = {t}: r_0[{}] = {} vs {}",
+                j + 1,
+                r0[j][k],
+                c[j]
+            );
+        }
+        assert!((t22[k] - roll.cos()).abs() < 1e-7, "t = {t}: T[2,2]");
+        assert!(
+            (t23[k] - roll.sin()).abs() < 1e-7,
+            "t = {t}: T[2,3] = {} vs {}",
+            t23[k],
+            roll.sin()
+        );
+        // Newton-Euler of the platform (massless legs): the legs' forces along their
+        // lines give m (a_cm - g) and, about the centre of mass, I_11 alpha about x.
+        let (s, co) = (w * t).sin_cos();
+        let (omega, alpha) = (motion.roll * w * co, -motion.roll * w * w * s);
+        let (rs, rc) = roll.sin_cos();
+        let r = [CM[0], CM[1] * rc - CM[2] * rs, CM[1] * rs + CM[2] * rc];
+        let (om, al) = ([omega, 0.0, 0.0], [alpha, 0.0, 0.0]);
+        let a_c = [0.0, -motion.heave * w * w * s, 0.0];
+        let a_cm: Vec<f64> = (0..3)
+            .map(|j| a_c[j] + cross(al, r)[j] + cross(om, cross(om, r))[j])
+            .collect();
+        let cm = [c[0] + r[0], c[1] + r[1], c[2] + r[2]];
+        let mut a = [[0.0; 7]; 6];
+        for (i, &(b, p)) in LEGS.iter().enumerate() {
+            let (b, p) = (base_corner(b), motion.corner(p, t));
+            let mut u = [p[0] - b[0], p[1] - b[1], p[2] - b[2]];
+            let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+            u.iter_mut().for_each(|x| *x /= l);
+            let m = cross([p[0] - cm[0], p[1] - cm[1], p[2] - cm[2]], u);
+            for j in 0..3 {
+                a[j][i] = u[j];
+                a[3 + j][i] = m[j];
+            }
+        }
+        for j in 0..3 {
+            a[j][6] = M_PLATFORM * a_cm[j] + if j == 1 { M_PLATFORM * G } else { 0.0 };
+        }
+        a[3][6] = I_ROLL * alpha;
+        let want = solve6(a);
+        for i in 0..6 {
+            let got = forces[i][k];
+            assert!(
+                (got - want[i]).abs() < 1e-5 * want[i].abs().max(1.0),
+                "t = {t}: leg{} force {got} vs {}",
+                i + 1,
+                want[i]
+            );
+        }
+    }
+}
