@@ -11,7 +11,7 @@
 //! stderr/stdout is switched off; its messages are forwarded to the `log`
 //! crate and included in [`IdaError`].
 
-use std::ffi::{CStr, c_char, c_int, c_long, c_void};
+use std::ffi::{c_int, c_long, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::ptr;
 
@@ -20,6 +20,7 @@ use sundials_sys as sys;
 pub use crate::codegen::EvalError;
 
 use super::linsol;
+use super::sundials::{Callback, EvalLog, Objects, origin_name, scatter_dense, vec_mut, vec_ref};
 
 /// The DAE F(t, y, y') = 0 with its Jacobian J = dF/dy + cj dF/dy'.
 pub trait DaeFunctions {
@@ -187,15 +188,6 @@ pub(super) fn invalid(t: f64, message: impl Into<String>) -> IdaError {
     }
 }
 
-/// Which callback produced an [`EvalError`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Callback {
-    Residual,
-    Jacobian,
-    /// The crossing functions.
-    Roots,
-}
-
 /// State shared with the C callbacks through IDA's user-data pointer.
 struct CallbackData<'a> {
     f: &'a mut dyn DaeFunctions,
@@ -212,117 +204,42 @@ struct CallbackData<'a> {
     /// Jacobian values buffer for the dense path.
     values: Vec<f64>,
     /// Last failure reported by a model callback.
-    last_error: Option<(f64, Callback, EvalError)>,
+    log: EvalLog,
 }
 
-impl CallbackData<'_> {
-    fn record(&mut self, t: f64, origin: Callback, e: EvalError) -> c_int {
-        let code = if e.recoverable { 1 } else { -1 };
-        log::debug!(
-            "{origin:?} evaluation failed at t = {t} (recoverable: {}): {}",
-            e.recoverable,
-            e.message
-        );
-        self.last_error = Some((t, origin, e));
-        code
-    }
-}
-
-/// Receives SUNDIALS error messages instead of printing them.
-#[derive(Default)]
-pub(super) struct ErrSink {
-    pub(super) last: Option<String>,
-}
-
-/// Owns every SUNDIALS object of one integration and frees them in Drop.
+/// Owns the IDA memory and the callback data of one integration and frees them in
+/// Drop, before the SUNDIALS objects they use.
 struct Guard<'a> {
-    ctx: sys::SUNContext,
     mem: *mut c_void,
-    ls: sys::SUNLinearSolver,
-    mat: sys::SUNMatrix,
-    vectors: Vec<sys::N_Vector>,
     data: *mut CallbackData<'a>,
-    sink: *mut ErrSink,
+    o: Objects,
 }
 
 impl Drop for Guard<'_> {
     fn drop(&mut self) {
-        // SAFETY: every pointer is either null or owned by this guard and was
-        // created by the matching SUNDIALS constructor / Box::into_raw. The
-        // context is freed last, the boxes referenced by it after that.
+        // SAFETY: both pointers are null or owned by this guard (IDACreate,
+        // Box::into_raw); `o` is dropped after this, its context last.
         unsafe {
             if !self.mem.is_null() {
                 sys::IDAFree(&mut self.mem);
-                self.mem = ptr::null_mut();
-            }
-            if !self.ls.is_null() {
-                sys::SUNLinSolFree(self.ls);
-                self.ls = ptr::null_mut();
-            }
-            if !self.mat.is_null() {
-                sys::SUNMatDestroy(self.mat);
-                self.mat = ptr::null_mut();
-            }
-            for v in self.vectors.drain(..) {
-                if !v.is_null() {
-                    sys::N_VDestroy(v);
-                }
-            }
-            if !self.ctx.is_null() {
-                sys::SUNContext_Free(&mut self.ctx);
-                self.ctx = ptr::null_mut();
             }
             if !self.data.is_null() {
                 drop(Box::from_raw(self.data));
-                self.data = ptr::null_mut();
-            }
-            if !self.sink.is_null() {
-                drop(Box::from_raw(self.sink));
-                self.sink = ptr::null_mut();
             }
         }
     }
 }
 
 impl Guard<'_> {
-    /// Creates a serial vector owned by the guard, filled with `values`.
-    fn vector(&mut self, values: &[f64]) -> Result<sys::N_Vector, String> {
-        let len =
-            sys::sunindextype::try_from(values.len()).map_err(|_| "vector too long".to_string())?;
-        // SAFETY: ctx is valid; the new vector has `values.len()` entries.
-        unsafe {
-            let v = sys::N_VNew_Serial(len, self.ctx);
-            if v.is_null() {
-                return Err("N_VNew_Serial failed".into());
-            }
-            self.vectors.push(v);
-            if !values.is_empty() {
-                let p = sys::N_VGetArrayPointer(v);
-                if p.is_null() {
-                    return Err("N_VGetArrayPointer returned null".into());
-                }
-                ptr::copy_nonoverlapping(values.as_ptr(), p, values.len());
-            }
-            Ok(v)
-        }
-    }
-
-    /// Takes the last SUNDIALS error message, if any.
-    fn take_sundials_message(&mut self) -> Option<String> {
-        // SAFETY: sink is owned by the guard and not borrowed elsewhere while
-        // no SUNDIALS call is running.
-        unsafe { self.sink.as_mut().and_then(|s| s.last.take()) }
-    }
-
     fn take_eval_error(&mut self) -> Option<(f64, Callback, EvalError)> {
         // SAFETY: as above; callbacks only run inside SUNDIALS calls.
-        unsafe { self.data.as_mut().and_then(|d| d.last_error.take()) }
+        unsafe { self.data.as_mut().and_then(|d| d.log.last.take()) }
     }
 
     /// Builds an [`IdaError`] for a failed SUNDIALS call.
     fn error(&mut self, t: f64, flag: c_int, context: &str, settings: &IdaSettings) -> IdaError {
         let eval = self.take_eval_error();
-        let sundials = self.take_sundials_message();
+        let sundials = self.o.take_message();
         let mut message = describe_flag(flag, eval.as_ref(), settings);
         if !context.is_empty() {
             message = format!("{context}: {message}");
@@ -371,23 +288,7 @@ impl Guard<'_> {
     }
 
     fn setup_failed(&mut self, t: f64, message: String) -> IdaError {
-        let mut message = message;
-        if let Some(s) = self.take_sundials_message() {
-            message.push_str(&format!(" [SUNDIALS: {}]", s.trim()));
-        }
-        IdaError {
-            t,
-            flag: "SETUP_FAILED".into(),
-            message,
-        }
-    }
-}
-
-pub(super) fn origin_name(o: Callback) -> &'static str {
-    match o {
-        Callback::Residual => "residual",
-        Callback::Jacobian => "Jacobian",
-        Callback::Roots => "crossing functions",
+        self.o.setup_failed(t, message)
     }
 }
 
@@ -484,41 +385,6 @@ fn describe_flag(
     }
 }
 
-/// Creates a slice over a serial vector.
-///
-/// # Safety
-/// `v` must be a valid serial N_Vector of length `n` that is not mutated while
-/// the slice lives.
-pub(super) unsafe fn vec_ref<'a>(v: sys::N_Vector, n: usize) -> &'a [f64] {
-    if n == 0 {
-        return &[];
-    }
-    // SAFETY: guaranteed by the caller.
-    unsafe { std::slice::from_raw_parts(sys::N_VGetArrayPointer(v), n) }
-}
-
-/// Mutable variant of [`vec_ref`].
-///
-/// # Safety
-/// As [`vec_ref`], and no other reference to the data may be live.
-pub(super) unsafe fn vec_mut<'a>(v: sys::N_Vector, n: usize) -> &'a mut [f64] {
-    if n == 0 {
-        return &mut [];
-    }
-    // SAFETY: guaranteed by the caller.
-    unsafe { std::slice::from_raw_parts_mut(sys::N_VGetArrayPointer(v), n) }
-}
-
-pub(super) fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = p.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = p.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic payload".into()
-    }
-}
-
 /// Records a caught panic as an unrecoverable evaluation error.
 ///
 /// # Safety
@@ -529,13 +395,9 @@ unsafe fn record_panic(
     origin: Callback,
     p: &(dyn std::any::Any + Send),
 ) -> c_int {
-    let e = EvalError {
-        message: format!("panic in model function: {}", panic_message(p)),
-        recoverable: false,
-    };
     // SAFETY: guaranteed by the caller.
     match unsafe { ud.cast::<CallbackData<'_>>().as_mut() } {
-        Some(d) => d.record(t, origin, e),
+        Some(d) => d.log.record_panic(t, origin, p),
         None => -1,
     }
 }
@@ -559,7 +421,7 @@ unsafe extern "C" fn residual_cb(
             match d.f.residual(t, y, ypv, out) {
                 Ok(()) => match out.iter().position(|v| !v.is_finite()) {
                     None => 0,
-                    Some(i) => d.record(
+                    Some(i) => d.log.record(
                         t,
                         Callback::Residual,
                         EvalError {
@@ -568,7 +430,7 @@ unsafe extern "C" fn residual_cb(
                         },
                     ),
                 },
-                Err(e) => d.record(t, Callback::Residual, e),
+                Err(e) => d.log.record(t, Callback::Residual, e),
             }
         }
     }));
@@ -596,7 +458,7 @@ unsafe extern "C" fn root_cb(
             let out = std::slice::from_raw_parts_mut(gout, nr);
             match d.f.roots(t, y, ypv, out) {
                 Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
-                Ok(()) => d.record(
+                Ok(()) => d.log.record(
                     t,
                     Callback::Roots,
                     EvalError {
@@ -605,7 +467,7 @@ unsafe extern "C" fn root_cb(
                     },
                 ),
                 // IDA cannot recover from a failing root function.
-                Err(e) => d.record(
+                Err(e) => d.log.record(
                     t,
                     Callback::Roots,
                     EvalError {
@@ -658,16 +520,16 @@ unsafe extern "C" fn jacobian_cb(
                     let values = std::slice::from_raw_parts_mut(data, nnz);
                     match d.f.jacobian(t, y, ypv, cj, values) {
                         Ok(()) => 0,
-                        Err(e) => d.record(t, Callback::Jacobian, e),
+                        Err(e) => d.log.record(t, Callback::Jacobian, e),
                     }
                 }
                 IdaMatrix::Dense | IdaMatrix::DenseDifferenceQuotient => {
                     let CallbackData { f, values, .. } = &mut *d;
                     if let Err(e) = f.jacobian(t, y, ypv, cj, values) {
-                        return d.record(t, Callback::Jacobian, e);
+                        return d.log.record(t, Callback::Jacobian, e);
                     }
                     if let Some(k) = d.values.iter().position(|v| !v.is_finite()) {
-                        return d.record(
+                        return d.log.record(
                             t,
                             Callback::Jacobian,
                             EvalError {
@@ -681,12 +543,7 @@ unsafe extern "C" fn jacobian_cb(
                         return -1;
                     }
                     let dense = std::slice::from_raw_parts_mut(data, n * n);
-                    dense.fill(0.0);
-                    for j in 0..n {
-                        for k in d.col_ptr[j]..d.col_ptr[j + 1] {
-                            dense[j * n + d.row_idx[k]] = d.values[k];
-                        }
-                    }
+                    scatter_dense(n, &d.col_ptr, &d.row_idx, &d.values, dense);
                     0
                 }
             }
@@ -694,39 +551,6 @@ unsafe extern "C" fn jacobian_cb(
     }));
     // SAFETY: the borrow inside the closure has ended.
     r.unwrap_or_else(|p| unsafe { record_panic(ud, t, Callback::Jacobian, p.as_ref()) })
-}
-
-pub(super) unsafe extern "C" fn error_handler_cb(
-    _line: c_int,
-    func: *const c_char,
-    _file: *const c_char,
-    msg: *const c_char,
-    err_code: sys::SUNErrCode,
-    err_user_data: *mut c_void,
-    _ctx: sys::SUNContext,
-) {
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: SUNDIALS passes NUL-terminated strings (or null) and the
-        // ErrSink pointer registered with the handler.
-        unsafe {
-            let text = |p: *const c_char| {
-                if p.is_null() {
-                    String::new()
-                } else {
-                    CStr::from_ptr(p).to_string_lossy().into_owned()
-                }
-            };
-            let (func, msg) = (text(func), text(msg));
-            log::debug!("SUNDIALS error {err_code} in {func}: {msg}");
-            if let Some(sink) = err_user_data.cast::<ErrSink>().as_mut() {
-                sink.last = Some(if func.is_empty() {
-                    msg
-                } else {
-                    format!("{func}: {msg}")
-                });
-            }
-        }
-    }));
 }
 
 pub(super) fn validate(
@@ -896,36 +720,28 @@ fn open<'a>(
         },
         col_ptr,
         row_idx,
-        last_error: None,
+        log: EvalLog::default(),
     };
+    let o = Objects::new().map_err(|m| IdaError {
+        t: t0,
+        flag: "SETUP_FAILED".into(),
+        message: m,
+    })?;
     let mut g = Guard {
-        ctx: ptr::null_mut(),
         mem: ptr::null_mut(),
-        ls: ptr::null_mut(),
-        mat: ptr::null_mut(),
-        vectors: Vec::new(),
         data: Box::into_raw(Box::new(data)),
-        sink: Box::into_raw(Box::<ErrSink>::default()),
+        o,
     };
 
     // SAFETY: all SUNDIALS objects are created here and owned by `g`, which
-    // frees them on every return path. Pointers passed to SUNDIALS (`g.data`,
-    // `g.sink`) stay valid until after the context is freed. Slices over the
-    // vectors are only created between SUNDIALS calls.
+    // frees them on every return path. The callback data passed to SUNDIALS stays
+    // valid until after the IDA memory is freed. Slices over the vectors are only
+    // created between SUNDIALS calls.
     unsafe {
-        if sys::SUNContext_Create(sys::comm_no_mpi(), &mut g.ctx) != 0 || g.ctx.is_null() {
-            g.ctx = ptr::null_mut();
-            return Err(g.setup_failed(t0, "SUNContext_Create failed".into()));
-        }
-        // Silence SUNDIALS: no logger output, errors go to our sink + log.
-        sys::SUNContext_SetLogger(g.ctx, ptr::null_mut());
-        sys::SUNContext_ClearErrHandlers(g.ctx);
-        sys::SUNContext_PushErrHandler(g.ctx, Some(error_handler_cb), g.sink.cast::<c_void>());
+        let yy = g.o.vector(y0).map_err(|m| g.setup_failed(t0, m))?;
+        let yp = g.o.vector(yp0).map_err(|m| g.setup_failed(t0, m))?;
 
-        let yy = g.vector(y0).map_err(|m| g.setup_failed(t0, m))?;
-        let yp = g.vector(yp0).map_err(|m| g.setup_failed(t0, m))?;
-
-        g.mem = sys::IDACreate(g.ctx);
+        g.mem = sys::IDACreate(g.o.ctx);
         if g.mem.is_null() {
             return Err(g.setup_failed(t0, "IDACreate failed".into()));
         }
@@ -936,7 +752,7 @@ fn open<'a>(
         g.check(flag, t0, "IDASetUserData", settings)?;
         let flag = match &settings.atol_vector {
             Some(a) => {
-                let av = g.vector(a).map_err(|m| g.setup_failed(t0, m))?;
+                let av = g.o.vector(a).map_err(|m| g.setup_failed(t0, m))?;
                 sys::IDASVtolerances(mem, settings.rtol, av)
             }
             None => sys::IDASStolerances(mem, settings.rtol, settings.atol),
@@ -963,7 +779,7 @@ fn open<'a>(
             } else {
                 settings.id.clone()
             };
-            let idv = g.vector(&id).map_err(|m| g.setup_failed(t0, m))?;
+            let idv = g.o.vector(&id).map_err(|m| g.setup_failed(t0, m))?;
             let flag = sys::IDASetId(mem, idv);
             g.check(flag, t0, "IDASetId", settings)?;
         }
@@ -975,27 +791,27 @@ fn open<'a>(
         // Linear solver.
         match settings.matrix {
             IdaMatrix::Dense | IdaMatrix::DenseDifferenceQuotient => {
-                g.mat = sys::SUNDenseMatrix(n_i, n_i, g.ctx);
-                if g.mat.is_null() {
+                g.o.mat = sys::SUNDenseMatrix(n_i, n_i, g.o.ctx);
+                if g.o.mat.is_null() {
                     return Err(g.setup_failed(t0, "SUNDenseMatrix failed".into()));
                 }
-                g.ls = sys::SUNLinSol_Dense(yy, g.mat, g.ctx);
-                if g.ls.is_null() {
+                g.o.ls = sys::SUNLinSol_Dense(yy, g.o.mat, g.o.ctx);
+                if g.o.ls.is_null() {
                     return Err(g.setup_failed(t0, "SUNLinSol_Dense failed".into()));
                 }
             }
             IdaMatrix::SparseLu => {
-                g.mat = sys::SUNSparseMatrix(dim_i, dim_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
-                if g.mat.is_null() {
+                g.o.mat = sys::SUNSparseMatrix(dim_i, dim_i, nnz_i, sys::CSC_MAT as c_int, g.o.ctx);
+                if g.o.mat.is_null() {
                     return Err(g.setup_failed(t0, "SUNSparseMatrix failed".into()));
                 }
-                g.ls = linsol::new_sparse_lu_solver(g.ctx);
-                if g.ls.is_null() {
+                g.o.ls = linsol::new_sparse_lu_solver(g.o.ctx);
+                if g.o.ls.is_null() {
                     return Err(g.setup_failed(t0, "creating the faer linear solver failed".into()));
                 }
             }
         }
-        let flag = sys::IDASetLinearSolver(mem, g.ls, g.mat);
+        let flag = sys::IDASetLinearSolver(mem, g.o.ls, g.o.mat);
         g.check(flag, t0, "IDASetLinearSolver", settings)?;
         if settings.matrix != IdaMatrix::DenseDifferenceQuotient {
             let flag = sys::IDASetJacFn(mem, Some(jacobian_cb));
@@ -1246,8 +1062,10 @@ pub fn integrate_monitored(
         // interpolated within the step that passed them (IDA's own dense output).
         let t_end = t_last.unwrap_or(t0);
         let (ky, kyp) = (
-            g.vector(&vec![0.0; n]).map_err(|m| g.setup_failed(t0, m))?,
-            g.vector(&vec![0.0; n]).map_err(|m| g.setup_failed(t0, m))?,
+            g.o.vector(&vec![0.0; n])
+                .map_err(|m| g.setup_failed(t0, m))?,
+            g.o.vector(&vec![0.0; n])
+                .map_err(|m| g.setup_failed(t0, m))?,
         );
         let mut next_output = 0;
         let mut t = t0;

@@ -23,6 +23,7 @@ mod problem;
 mod project;
 mod solution;
 mod steady;
+mod sundials;
 
 pub use builder::ProblemBuilder;
 pub use ensemble::{EnsembleOptions, solve_ensemble};

@@ -19,10 +19,13 @@ use std::ptr;
 use sundials_sys as sys;
 
 use super::ida::{
-    Callback, DaeFunctions, ErrSink, EvalError, IdaError, IdaSettings, IdaStats, Integrated,
-    OutputMode, error_handler_cb, invalid, origin_name, panic_message, validate, vec_mut, vec_ref,
+    DaeFunctions, EvalError, IdaError, IdaSettings, IdaStats, Integrated, OutputMode, invalid,
+    validate,
 };
 use super::linsol;
+use super::sundials::{
+    Callback, EvalLog, Objects, not_finite, origin_name, scatter_dense, vec_mut, vec_ref,
+};
 
 /// An ODE `u' = f(t, u)` with, optionally, its Jacobian `df/du` and crossing functions.
 pub trait OdeFunctions {
@@ -243,40 +246,22 @@ struct OdeData<'a> {
     values: Vec<f64>,
     /// `f(t, y)` for the crossing functions.
     ydot: Vec<f64>,
-    last_error: Option<(f64, Callback, EvalError)>,
+    log: EvalLog,
 }
 
-impl OdeData<'_> {
-    fn record(&mut self, t: f64, origin: Callback, e: EvalError) -> c_int {
-        let code = if e.recoverable { 1 } else { -1 };
-        log::debug!(
-            "{origin:?} evaluation failed at t = {t} (recoverable: {}): {}",
-            e.recoverable,
-            e.message
-        );
-        self.last_error = Some((t, origin, e));
-        code
-    }
-}
-
-/// Owns every SUNDIALS object of one integration and frees them in Drop.
+/// Owns the integrator's memory and the callback data of one integration and frees
+/// them in Drop, before the SUNDIALS objects they use.
 struct Guard<'a> {
     method: OdeMethod,
-    ctx: sys::SUNContext,
     mem: *mut c_void,
-    ls: sys::SUNLinearSolver,
-    nls: sys::SUNNonlinearSolver,
-    mat: sys::SUNMatrix,
-    vectors: Vec<sys::N_Vector>,
     data: *mut OdeData<'a>,
-    sink: *mut ErrSink,
+    o: Objects,
 }
 
 impl Drop for Guard<'_> {
     fn drop(&mut self) {
-        // SAFETY: every pointer is null or owned by this guard and created by the
-        // matching constructor; the context is freed after the objects made in it, the
-        // boxes it references after the context.
+        // SAFETY: both pointers are null or owned by this guard; `o` is dropped after
+        // this, its context last.
         unsafe {
             if !self.mem.is_null() {
                 if self.method.cvode() {
@@ -284,75 +269,24 @@ impl Drop for Guard<'_> {
                 } else {
                     ARKodeFree(&mut self.mem);
                 }
-                self.mem = ptr::null_mut();
-            }
-            if !self.nls.is_null() {
-                sys::SUNNonlinSolFree(self.nls);
-            }
-            if !self.ls.is_null() {
-                sys::SUNLinSolFree(self.ls);
-            }
-            if !self.mat.is_null() {
-                sys::SUNMatDestroy(self.mat);
-            }
-            for v in self.vectors.drain(..) {
-                if !v.is_null() {
-                    sys::N_VDestroy(v);
-                }
-            }
-            if !self.ctx.is_null() {
-                sys::SUNContext_Free(&mut self.ctx);
             }
             if !self.data.is_null() {
                 drop(Box::from_raw(self.data));
-            }
-            if !self.sink.is_null() {
-                drop(Box::from_raw(self.sink));
             }
         }
     }
 }
 
 impl Guard<'_> {
-    fn vector(&mut self, values: &[f64]) -> Result<sys::N_Vector, String> {
-        let len =
-            sys::sunindextype::try_from(values.len()).map_err(|_| "vector too long".to_string())?;
-        // SAFETY: ctx is valid; the new vector has `values.len()` entries.
-        unsafe {
-            let v = sys::N_VNew_Serial(len, self.ctx);
-            if v.is_null() {
-                return Err("N_VNew_Serial failed".into());
-            }
-            self.vectors.push(v);
-            if !values.is_empty() {
-                ptr::copy_nonoverlapping(values.as_ptr(), sys::N_VGetArrayPointer(v), values.len());
-            }
-            Ok(v)
-        }
-    }
-
     fn setup_failed(&mut self, t: f64, message: String) -> IdaError {
-        let mut message = message;
-        // SAFETY: the sink is owned by the guard; no SUNDIALS call is running.
-        if let Some(s) = unsafe { self.sink.as_mut().and_then(|s| s.last.take()) } {
-            message.push_str(&format!(" [SUNDIALS: {}]", s.trim()));
-        }
-        IdaError {
-            t,
-            flag: "SETUP_FAILED".into(),
-            message,
-        }
+        self.o.setup_failed(t, message)
     }
 
     /// The error of a failed SUNDIALS call.
     fn error(&mut self, t: f64, flag: c_int, context: &str, settings: &IdaSettings) -> IdaError {
         // SAFETY: as in setup_failed; callbacks only run inside SUNDIALS calls.
-        let (eval, sundials) = unsafe {
-            (
-                self.data.as_mut().and_then(|d| d.last_error.take()),
-                self.sink.as_mut().and_then(|s| s.last.take()),
-            )
-        };
+        let eval = unsafe { self.data.as_mut().and_then(|d| d.log.last.take()) };
+        let sundials = self.o.take_message();
         let name = flag_name(self.method, flag);
         let mut message = describe(&name, eval.as_ref(), settings);
         if !context.is_empty() {
@@ -467,13 +401,9 @@ unsafe fn record_panic(
     o: Callback,
     p: &(dyn std::any::Any + Send),
 ) -> c_int {
-    let e = EvalError {
-        message: format!("panic in model function: {}", panic_message(p)),
-        recoverable: false,
-    };
     // SAFETY: guaranteed by the caller.
     match unsafe { ud.cast::<OdeData<'_>>().as_mut() } {
-        Some(d) => d.record(t, o, e),
+        Some(d) => d.log.record_panic(t, o, p),
         None => -1,
     }
 }
@@ -492,19 +422,9 @@ unsafe extern "C" fn rhs_cb(
             };
             let n = d.n;
             let (y, out) = (vec_ref(y, n), vec_mut(ydot, n));
-            match d.f.rhs(t, y, out) {
-                Ok(()) => match out.iter().position(|v| !v.is_finite()) {
-                    None => 0,
-                    Some(i) => d.record(
-                        t,
-                        Callback::Residual,
-                        EvalError {
-                            message: format!("derivative {i} is not finite"),
-                            recoverable: true,
-                        },
-                    ),
-                },
-                Err(e) => d.record(t, Callback::Residual, e),
+            match d.f.rhs(t, y, out).map(|()| not_finite(out, "derivative")) {
+                Ok(None) => 0,
+                Ok(Some(e)) | Err(e) => d.log.record(t, Callback::Residual, e),
             }
         }
     }));
@@ -526,7 +446,7 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
             let result = f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out));
             match result {
                 Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
-                Ok(()) => d.record(
+                Ok(()) => d.log.record(
                     t,
                     Callback::Roots,
                     EvalError {
@@ -534,7 +454,7 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
                         recoverable: false,
                     },
                 ),
-                Err(e) => d.record(
+                Err(e) => d.log.record(
                     t,
                     Callback::Roots,
                     EvalError {
@@ -572,17 +492,10 @@ unsafe extern "C" fn jacobian_cb(
             let nnz = d.row_idx.len();
             let OdeData { f, values, .. } = &mut *d;
             if let Err(e) = f.jacobian(t, y, values) {
-                return d.record(t, Callback::Jacobian, e);
+                return d.log.record(t, Callback::Jacobian, e);
             }
-            if let Some(k) = d.values.iter().position(|v| !v.is_finite()) {
-                return d.record(
-                    t,
-                    Callback::Jacobian,
-                    EvalError {
-                        message: format!("Jacobian entry {k} is not finite"),
-                        recoverable: true,
-                    },
-                );
+            if let Some(e) = not_finite(&d.values, "Jacobian entry") {
+                return d.log.record(t, Callback::Jacobian, e);
             }
             if d.dense {
                 let data = sys::SUNDenseMatrix_Data(jac);
@@ -590,12 +503,7 @@ unsafe extern "C" fn jacobian_cb(
                     return -1;
                 }
                 let dense = std::slice::from_raw_parts_mut(data, n * n);
-                dense.fill(0.0);
-                for j in 0..n {
-                    for k in d.col_ptr[j]..d.col_ptr[j + 1] {
-                        dense[j * n + d.row_idx[k]] = d.values[k];
-                    }
-                }
+                scatter_dense(n, &d.col_ptr, &d.row_idx, &d.values, dense);
             } else {
                 if (sys::SUNSparseMatrix_NNZ(jac) as usize) < nnz {
                     let flag = sys::SUNSparseMatrix_Reallocate(jac, nnz as sys::sunindextype);
@@ -722,18 +630,18 @@ fn open<'a>(
         col_ptr,
         row_idx,
         ydot: vec![0.0; n],
-        last_error: None,
+        log: EvalLog::default(),
     };
+    let o = Objects::new().map_err(|m| IdaError {
+        t: t0,
+        flag: "SETUP_FAILED".into(),
+        message: m,
+    })?;
     let mut g = Guard {
         method,
-        ctx: ptr::null_mut(),
         mem: ptr::null_mut(),
-        ls: ptr::null_mut(),
-        nls: ptr::null_mut(),
-        mat: ptr::null_mut(),
-        vectors: Vec::new(),
         data: Box::into_raw(Box::new(data)),
-        sink: Box::into_raw(Box::<ErrSink>::default()),
+        o,
     };
     let max_steps = c_long::try_from(settings.max_steps).unwrap_or(c_long::MAX);
     let t_scale = t_stop.abs().max(t0.abs()).max(1e-300);
@@ -741,33 +649,26 @@ fn open<'a>(
     let name = |table: &str| CString::new(table).map_err(|_| invalid(t0, "bad table name"));
 
     // SAFETY: every SUNDIALS object is created here and owned by `g`, which frees them
-    // on every return path; `g.data` and `g.sink` outlive the context.
+    // on every return path; the callback data outlives the integrator's memory.
     unsafe {
-        if sys::SUNContext_Create(sys::comm_no_mpi(), &mut g.ctx) != 0 || g.ctx.is_null() {
-            g.ctx = ptr::null_mut();
-            return Err(g.setup_failed(t0, "SUNContext_Create failed".into()));
-        }
-        sys::SUNContext_SetLogger(g.ctx, ptr::null_mut());
-        sys::SUNContext_ClearErrHandlers(g.ctx);
-        sys::SUNContext_PushErrHandler(g.ctx, Some(error_handler_cb), g.sink.cast::<c_void>());
-        let y = g.vector(y0).map_err(|m| g.setup_failed(t0, m))?;
+        let y = g.o.vector(y0).map_err(|m| g.setup_failed(t0, m))?;
         let atol = match &settings.atol_vector {
-            Some(a) => Some(g.vector(a).map_err(|m| g.setup_failed(t0, m))?),
+            Some(a) => Some(g.o.vector(a).map_err(|m| g.setup_failed(t0, m))?),
             None => None,
         };
         if method.implicit() {
             if sparse {
                 let nnz_i = sys::sunindextype::try_from(nnz.max(1))
                     .map_err(|_| invalid(t0, "Jacobian too large"))?;
-                g.mat = sys::SUNSparseMatrix(n_i, n_i, nnz_i, sys::CSC_MAT as c_int, g.ctx);
-                g.ls = linsol::new_sparse_lu_solver(g.ctx);
+                g.o.mat = sys::SUNSparseMatrix(n_i, n_i, nnz_i, sys::CSC_MAT as c_int, g.o.ctx);
+                g.o.ls = linsol::new_sparse_lu_solver(g.o.ctx);
             } else {
-                g.mat = sys::SUNDenseMatrix(n_i, n_i, g.ctx);
-                if !g.mat.is_null() {
-                    g.ls = sys::SUNLinSol_Dense(y, g.mat, g.ctx);
+                g.o.mat = sys::SUNDenseMatrix(n_i, n_i, g.o.ctx);
+                if !g.o.mat.is_null() {
+                    g.o.ls = sys::SUNLinSol_Dense(y, g.o.mat, g.o.ctx);
                 }
             }
-            if g.mat.is_null() || g.ls.is_null() {
+            if g.o.mat.is_null() || g.o.ls.is_null() {
                 return Err(g.setup_failed(t0, "creating the linear solver failed".into()));
             }
         }
@@ -779,7 +680,7 @@ fn open<'a>(
             } else {
                 sys::CV_ADAMS
             };
-            g.mem = sys::CVodeCreate(lmm, g.ctx);
+            g.mem = sys::CVodeCreate(lmm, g.o.ctx);
             if g.mem.is_null() {
                 return Err(g.setup_failed(t0, "CVodeCreate failed".into()));
             }
@@ -794,18 +695,18 @@ fn open<'a>(
             };
             g.check(flag, t0, "setting tolerances", settings)?;
             if method.implicit() {
-                let flag = sys::CVodeSetLinearSolver(mem, g.ls, g.mat);
+                let flag = sys::CVodeSetLinearSolver(mem, g.o.ls, g.o.mat);
                 g.check(flag, t0, "CVodeSetLinearSolver", settings)?;
                 if has_jac {
                     let flag = sys::CVodeSetJacFn(mem, Some(jacobian_cb));
                     g.check(flag, t0, "CVodeSetJacFn", settings)?;
                 }
             } else {
-                g.nls = sys::SUNNonlinSol_FixedPoint(y, 0, g.ctx);
-                if g.nls.is_null() {
+                g.o.nls = sys::SUNNonlinSol_FixedPoint(y, 0, g.o.ctx);
+                if g.o.nls.is_null() {
                     return Err(g.setup_failed(t0, "SUNNonlinSol_FixedPoint failed".into()));
                 }
-                let flag = sys::CVodeSetNonlinearSolver(mem, g.nls);
+                let flag = sys::CVodeSetNonlinearSolver(mem, g.o.nls);
                 g.check(flag, t0, "CVodeSetNonlinearSolver", settings)?;
             }
             let flag = sys::CVodeSetMaxNumSteps(mem, max_steps);
@@ -831,8 +732,8 @@ fn open<'a>(
             }
         } else {
             g.mem = match method {
-                OdeMethod::Explicit(_) => ERKStepCreate(Some(rhs_cb), t0, y, g.ctx),
-                _ => ARKStepCreate(None, Some(rhs_cb), t0, y, g.ctx),
+                OdeMethod::Explicit(_) => ERKStepCreate(Some(rhs_cb), t0, y, g.o.ctx),
+                _ => ARKStepCreate(None, Some(rhs_cb), t0, y, g.o.ctx),
             };
             if g.mem.is_null() {
                 return Err(g.setup_failed(t0, "creating the ARKODE stepper failed".into()));
@@ -856,7 +757,7 @@ fn open<'a>(
             };
             g.check(flag, t0, "setting tolerances", settings)?;
             if method.implicit() {
-                let flag = ARKodeSetLinearSolver(mem, g.ls, g.mat);
+                let flag = ARKodeSetLinearSolver(mem, g.o.ls, g.o.mat);
                 g.check(flag, t0, "ARKodeSetLinearSolver", settings)?;
                 if has_jac {
                     let flag = ARKodeSetJacFn(mem, Some(jacobian_cb));
@@ -1064,7 +965,7 @@ fn integrate_run(
                 stiff_at: None,
             });
         }
-        let ky = g.vector(&zeros).map_err(|m| g.setup_failed(t0, m))?;
+        let ky = g.o.vector(&zeros).map_err(|m| g.setup_failed(t0, m))?;
         let mut next_output = 0;
         let mut t = t0;
         let mut stopped = None;
