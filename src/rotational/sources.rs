@@ -47,6 +47,43 @@ component! {
 }
 
 component! {
+    /// A load torque quadratic in speed (MSL
+    /// `Rotational.Sources.QuadraticSpeedDependentTorque`): the torque accelerating the
+    /// flange is `tau_nominal (w / w_nominal)^2`, of the sign of `tau_nominal` whatever
+    /// the direction of rotation (`torque_direction`, the default), else `tau_nominal
+    /// w |w| / w_nominal^2` (it changes sign with the speed). A negative `tau_nominal`
+    /// brakes a flange turning forwards (a fan, a propeller).
+    #[type_name = "Rotational.QuadraticSpeedDependentTorque"]
+    pub struct QuadraticSpeedDependentTorque {
+        /// The accelerating torque at `w_nominal` [N.m] (default 1).
+        parameter tau_nominal: f64 = 1.0;
+        /// The speed at which the torque is `tau_nominal` [rad/s] (default 1, positive).
+        parameter w_nominal(min = 0.0): f64 = 1.0;
+        /// Whether the torque keeps its sign when the speed changes its (default true).
+        structural torque_direction: bool = true;
+        /// Driven flange.
+        connector flange: Flange;
+        /// Angle of the flange [rad].
+        variable phi: Real;
+        /// Speed of the flange [rad/s].
+        variable w: Real;
+        /// Torque accelerating the flange, `-flange.tau` [N.m].
+        variable tau: Real;
+        equation {
+            assert(gt(w_nominal, 0.0), "`w_nominal` must be positive");
+            phi = flange.phi;
+            w = der(phi);
+            tau = -flange.tau;
+            if torque_direction {
+                tau = tau_nominal * (w / w_nominal) * (w / w_nominal);
+            } else {
+                tau = tau_nominal * w * abs(w) / (w_nominal * w_nominal);
+            }
+        }
+    }
+}
+
+component! {
     /// Forces the flange to follow the reference angle `phi_ref` (MSL
     /// `Rotational.Sources.Position`): exactly (the reference is differentiated, so it
     /// must be smooth), or filtered by a critically damped 2nd-order Bessel filter of
