@@ -328,19 +328,6 @@ fn sampled_speed_control_matches_the_discrete_time_closed_form() {
     let t_end = 2.0;
     // Output times between the sample instants.
     let times: Vec<f64> = (0..20).map(|m| 0.05 + period * m as f64).collect();
-    let sol = DaeProblem::new(
-        &ssys,
-        &[("inertia.phi", 0.0), ("inertia.w", 0.0)],
-        (0.0, t_end),
-    )
-    .unwrap()
-    .solve(&SolverOptions {
-        rtol: 1e-10,
-        atol: 1e-12,
-        output_times: Some(times.clone()),
-        ..SolverOptions::default()
-    })
-    .unwrap();
     let a = (-d * period / j).exp();
     let mut w_k = 0.0;
     let mut held = Vec::new();
@@ -349,35 +336,57 @@ fn sampled_speed_control_matches_the_discrete_time_closed_form() {
         held.push((w_k, tau));
         w_k = a * w_k + (1.0 - a) * tau / d;
     }
-    let (w, tau) = (sol.get("inertia.w").unwrap(), sol.get("gain.y").unwrap());
-    for &t in &times {
-        let m = (t / period).floor() as usize;
-        let (w_m, tau_m) = held[m];
-        let exact = tau_m / d + (w_m - tau_m / d) * (-d * (t - m as f64 * period) / j).exp();
-        let i = sol.t().iter().position(|&s| s == t).unwrap();
-        assert!(
-            (w[i] - exact).abs() < 1e-7,
-            "w({t}) = {}, exact {exact}",
-            w[i]
-        );
-        // The control signal changes only at the sample instants.
-        assert!(
-            (tau[i] - tau_m).abs() < 1e-7,
-            "tau({t}) = {}, held {tau_m}",
-            tau[i]
-        );
-    }
-    // A sample at t = 0 and every period after it up to t_end, which has its own (the
-    // instants are multiples of the period, not sums of it).
-    let samples: Vec<f64> = sol
-        .events()
-        .iter()
-        .filter(|e| e.value)
-        .map(|e| e.t)
-        .collect();
-    assert_eq!(samples.len(), 21, "{:?}", sol.events());
-    for (m, &t) in samples.iter().enumerate() {
-        assert_eq!(t, m as f64 * period, "sample {m}");
+    // The same with every kind of method: sample instants are time events.
+    for method in [
+        multibody::Method::Ida,
+        multibody::Method::Verner8,
+        multibody::Method::CvodeBdf,
+        multibody::Method::Kvaerno5,
+    ] {
+        let sol = DaeProblem::new(
+            &ssys,
+            &[("inertia.phi", 0.0), ("inertia.w", 0.0)],
+            (0.0, t_end),
+        )
+        .unwrap()
+        .solve(&SolverOptions {
+            rtol: 1e-10,
+            atol: 1e-12,
+            output_times: Some(times.clone()),
+            method,
+            ..SolverOptions::default()
+        })
+        .unwrap();
+        let (w, tau) = (sol.get("inertia.w").unwrap(), sol.get("gain.y").unwrap());
+        for &t in &times {
+            let m = (t / period).floor() as usize;
+            let (w_m, tau_m) = held[m];
+            let exact = tau_m / d + (w_m - tau_m / d) * (-d * (t - m as f64 * period) / j).exp();
+            let i = sol.t().iter().position(|&s| s == t).unwrap();
+            assert!(
+                (w[i] - exact).abs() < 1e-7,
+                "{method:?}: w({t}) = {}, exact {exact}",
+                w[i]
+            );
+            // The control signal changes only at the sample instants.
+            assert!(
+                (tau[i] - tau_m).abs() < 1e-7,
+                "{method:?}: tau({t}) = {}, held {tau_m}",
+                tau[i]
+            );
+        }
+        // A sample at t = 0 and every period after it up to t_end, which has its own (the
+        // instants are multiples of the period, not sums of it).
+        let samples: Vec<f64> = sol
+            .events()
+            .iter()
+            .filter(|e| e.value)
+            .map(|e| e.t)
+            .collect();
+        assert_eq!(samples.len(), 21, "{method:?}: {:?}", sol.events());
+        for (m, &t) in samples.iter().enumerate() {
+            assert_eq!(t, m as f64 * period, "{method:?}: sample {m}");
+        }
     }
 }
 

@@ -65,6 +65,7 @@ fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
     // is measured from the lowest point (phi = -pi/2).
     let ssys = structural_simplify(&pendulum()).unwrap();
     let g = 9.80665;
+    let mut steps_by_method = Vec::new();
     for length in [1.0f64, 0.5] {
         let phi0 = 0.3;
         let amplitude = phi0 + std::f64::consts::FRAC_PI_2;
@@ -81,6 +82,23 @@ fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
                 ..options(method, 1e-9)
             })
             .unwrap();
+            // Each method is itself: the explicit ones evaluate no Jacobian, the
+            // implicit ones do.
+            let stats = sol.statistics();
+            let explicit = matches!(
+                method,
+                Method::CvodeAdams
+                    | Method::DormandPrince5
+                    | Method::Verner6
+                    | Method::Verner7
+                    | Method::Verner8
+                    | Method::Verner9
+                    | Method::Auto
+            );
+            assert_eq!(stats.jacobian_evals == 0, explicit, "{method:?}: {stats:?}");
+            if length == 1.0 {
+                steps_by_method.push(stats.steps);
+            }
             let phi = sol.get("joint.phi").unwrap();
             let w = sol.get("joint.w").unwrap();
             // t0, a quarter (the lowest point), half (the other side), the period.
@@ -109,6 +127,11 @@ fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
             );
         }
     }
+    // Auto is Verner 8(7) here; every other method takes its own number of steps.
+    let mut distinct = steps_by_method.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    assert_eq!(distinct.len(), ALL.len() - 1, "{steps_by_method:?}");
 }
 
 component! {
@@ -215,6 +238,14 @@ fn the_automatic_choice_stays_explicit_on_a_smooth_model_and_takes_bdf_on_a_stif
         solve(Method::Ida),
     );
     assert_eq!(steps(&auto), steps(&vern8));
+    // Nor does it switch at a loose tolerance, where its steps are long.
+    let loose = |method| {
+        DaeProblem::new(&ssys, &[("joint.phi", 0.3)], (0.0, 10.0))
+            .unwrap()
+            .solve(&options(method, 1e-4))
+            .unwrap()
+    };
+    assert_eq!(steps(&loose(Method::Auto)), steps(&loose(Method::Verner8)));
     assert!(
         5 * steps(&auto) < steps(&ida),
         "Verner 8(7) {} steps, IDA {}",
@@ -257,6 +288,25 @@ fn the_automatic_choice_stays_explicit_on_a_smooth_model_and_takes_bdf_on_a_stif
         steps(&auto),
         steps(&vern7)
     );
+
+    // 15 masses, 30 states: the implicit methods factor with the sparse LU.
+    let (n, c) = (15, 1e4);
+    let ssys = structural_simplify(&stiff_chain(n, c, d, force)).unwrap();
+    assert_eq!(ssys.states().len(), 2 * n);
+    for method in [Method::CvodeBdf, Method::Kvaerno5] {
+        let sol = DaeProblem::new(&ssys, &[], (0.0, 20.0))
+            .unwrap()
+            .solve(&options(method, 1e-8))
+            .unwrap();
+        for k in 1..=n {
+            let s = sol.final_value(format!("mass{k}.s").as_str()).unwrap();
+            let exact = k as f64 * force / c;
+            assert!(
+                (s - exact).abs() < 1e-7,
+                "{method:?}: mass{k}.s = {s}, exact {exact}"
+            );
+        }
+    }
 }
 
 component! {

@@ -22,18 +22,19 @@
 //! diagnostics (operation counts, timed residual evaluations, extended-Jacobian
 //! variants), `BENCH_EVAL_ONLY` (with `BENCH_STATS`) only times residual evaluations,
 //! `BENCH_LINEAR_SOLVER=dense|sparse|plain|dq` forces IDA's linear solver,
-//! After each size's row, a row per integration method (`n`, `method`, `steps`,
-//! `rhs_evals`, `solve_s`; for the explicit methods `baseline_solve_s`,
-//! `baseline_steps` and `solve_ratio` against the articulated-body algorithm of
-//! [`aba`] integrated by the same ARKODE method), and at the end the rows of a stiff
-//! chain of 20 spring-damper-coupled masses; `BENCH_SKIP_METHODS` skips both.
-//!
-//! `BENCH_ONLY_OURS` skips the baseline, `BENCH_PRE_FILL=k` sets
+//! `BENCH_SKIP_METHODS` skips the rows per method (below), `BENCH_ONLY_OURS` skips the
+//! baseline, `BENCH_PRE_FILL=k` sets
 //! `LinearBlockLimits::pre_elimination_fill` (`none` disables it), `BENCH_DAE_FORM`
 //! leaves the acceleration block to IDA as algebraic unknowns, `BENCH_MAX_TEARING=k` sets
 //! `LinearBlockLimits::max_inline_tearing` (at N = 20 the 231-equation acceleration
 //! block torn to 38 variables and solved dense takes 0.41 s against 0.25 s by the
 //! sparse LU).
+//!
+//! After each size's row, a row per integration method (`n`, `method`, `steps`,
+//! `rhs_evals`, `solve_s`; for the explicit methods `baseline_solve_s`,
+//! `baseline_steps` and `solve_ratio` against the articulated-body algorithm of
+//! [`aba`] integrated by the same ARKODE method), and at the end the rows of a stiff
+//! chain of 20 spring-damper-coupled masses.
 
 mod aba;
 mod methods;

@@ -59,7 +59,7 @@ component! {
         parameter tau_nominal: f64 = 1.0;
         /// The speed at which the torque is `tau_nominal` [rad/s] (default 1, positive).
         parameter w_nominal(min = 0.0): f64 = 1.0;
-        /// Whether the torque keeps its sign when the speed changes its (default true).
+        /// Whether the torque keeps its sign when the speed changes sign (default true).
         structural torque_direction: bool = true;
         /// Driven flange.
         connector flange: Flange;

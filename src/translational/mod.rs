@@ -205,8 +205,8 @@ component! {
 component! {
     /// Forces the flange to follow the reference position `s_ref` (MSL
     /// `Translational.Sources.Position`): exactly (the reference is differentiated, so it
-    /// must be smooth and cannot be a model input), or filtered by a critically damped
-    /// 2nd-order Bessel filter of cut-off frequency `f_crit` whose states are the
+    /// must be smooth and cannot be a model input), or filtered by MSL's 2nd-order
+    /// Bessel filter of cut-off frequency `f_crit` whose states are the
     /// flange's position and speed, and which starts at the reference position (an
     /// initial equation, as MSL).
     #[type_name = "Translational.Position"]
@@ -237,7 +237,7 @@ component! {
             if exact {
                 s = s_ref;
             } else {
-                // 2nd-order critically damped Bessel filter (af = 1.3617, bf = 0.6180).
+                // MSL's 2nd-order Bessel filter (af = 1.3617, bf = 0.6180).
                 a = ((s_ref - s) * (2.0 * PI * f_crit) - 1.3617 * v)
                     * ((2.0 * PI * f_crit) / 0.6180);
             }

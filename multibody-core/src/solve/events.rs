@@ -203,7 +203,7 @@ pub(super) const CROSSING_ZERO: f64 = 1e-8;
 /// rounding errors, and one that starts exactly at zero would not be seen to leave it).
 /// Relations that `when` clauses or the continuous equations read have none: a bouncing
 /// ball's contact is exact (where an integration starts at their zero, their crossing
-/// functions start the least positive number away from it, on the side of their value).
+/// functions start the least positive normal number away from it, on the side of their value).
 pub(super) const HYSTERESIS: f64 = 1e-10;
 
 /// Times a relation takes the same value in quick succession before the events are

@@ -140,7 +140,8 @@ pub struct IdaStats {
     pub steps: u64,
     /// Residual evaluations, including those for difference-quotient Jacobians (for
     /// CVODE and ARKODE: right-hand side evaluations, each one evaluation of the
-    /// residual; one more per reported point, for its derivatives, is not counted).
+    /// residual; one more per reported point, for its derivatives, and those of
+    /// `Method::Auto`'s stiffness checks are not counted).
     pub residual_evals: u64,
     /// Jacobian evaluations (analytic or difference quotient).
     pub jacobian_evals: u64,

@@ -128,8 +128,11 @@ pub enum OdeMethod {
     /// [`STIFFNESS_CHECK_STEPS`] steps the largest eigenvalue of `df/du` is estimated
     /// by power iteration (difference quotients of `f`); where the step size times it
     /// exceeds [`STIFF_STEP_RATIO`] at two checks in a row, the step is held by the
-    /// method's stability (its stability region reaches 3 to 5 along the axes), not by
-    /// its accuracy.
+    /// method's stability (its stability region reaches 5.9 along the negative real
+    /// axis), not by its accuracy. Also where the right-hand side fails recoverably (a
+    /// value out of its domain in a trial stage): the explicit stepper cannot retry
+    /// with a shorter step, BDF can. The decision holds for one integration (one
+    /// segment between events).
     Auto,
 }
 
@@ -137,7 +140,7 @@ pub enum OdeMethod {
 pub const STIFFNESS_CHECK_STEPS: usize = 25;
 /// Step size times the spectral radius of `df/du` above which [`OdeMethod::Auto`]
 /// counts a step as limited by stability.
-pub const STIFF_STEP_RATIO: f64 = 2.0;
+pub const STIFF_STEP_RATIO: f64 = 3.5;
 /// The explicit method of [`OdeMethod::Auto`].
 const AUTO_NONSTIFF: OdeMethod = OdeMethod::Explicit("ARKODE_VERNER_13_7_8");
 
@@ -244,6 +247,8 @@ struct OdeData<'a> {
     col_ptr_i: Vec<sys::sunindextype>,
     row_idx_i: Vec<sys::sunindextype>,
     values: Vec<f64>,
+    /// Number of crossing functions (as told to SUNDIALS).
+    n_roots: usize,
     /// `f(t, y)` for the crossing functions.
     ydot: Vec<f64>,
     log: EvalLog,
@@ -441,7 +446,7 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
             };
             let n = d.n;
             let y = vec_ref(y, n);
-            let out = std::slice::from_raw_parts_mut(gout, d.f.n_roots());
+            let out = std::slice::from_raw_parts_mut(gout, d.n_roots);
             let OdeData { f, ydot, .. } = &mut *d;
             let result = f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out));
             match result {
@@ -629,6 +634,7 @@ fn open<'a>(
         values: vec![0.0; nnz],
         col_ptr,
         row_idx,
+        n_roots,
         ydot: vec![0.0; n],
         log: EvalLog::default(),
     };
@@ -978,9 +984,33 @@ fn integrate_run(
         } else {
             (ARK_TSTOP_RETURN, ARK_ROOT_RETURN)
         };
+        // The last accepted step, where `Auto` takes up a failed explicit integration.
+        let mut last: (f64, Vec<f64>) = (t0, if detect { y0.to_vec() } else { Vec::new() });
         loop {
+            if detect {
+                last.0 = t;
+                last.1.copy_from_slice(vec_ref(y, n));
+            }
             let flag = step(&g, t_end, y, &mut t);
             if flag < 0 {
+                // The explicit stepper gives up on a right-hand side that failed
+                // recoverably; `Auto` goes on with BDF from the last step.
+                let recoverable = (*g.data)
+                    .log
+                    .last
+                    .as_ref()
+                    .is_some_and(|(_, _, e)| e.recoverable);
+                if detect && recoverable && flag_name(method, flag) == "ARK_UNREC_RHSFUNC_ERR" {
+                    log::debug!(
+                        "{method:?} failed at t = {t} on a recoverable model error: switching to BDF at t = {}",
+                        last.0
+                    );
+                    let (tl, yl) = std::mem::take(&mut last);
+                    eval(&mut g, tl, &yl, &mut ydot)?;
+                    stopped = Some((tl, yl, ydot.clone()));
+                    stiff_at = Some(tl);
+                    break;
+                }
                 return Err(g.error(t, flag, "", settings));
             }
             let done = flag == tstop_flag || t >= t_end;
@@ -1136,7 +1166,7 @@ impl Stiffness {
 
     /// The largest modulus of the eigenvalues of `df/du` at `(t, y)`, by power
     /// iteration with difference quotients (the geometric mean of two successive
-    /// growth factors, which also settles for a complex pair).
+    /// growth factors, which also settles for a complex pair of a normal matrix).
     fn spectral_radius(&mut self, f: &mut dyn OdeFunctions, t: f64, y: &[f64]) -> Option<f64> {
         const ITERATIONS: usize = 8;
         let n = y.len();

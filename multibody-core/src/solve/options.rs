@@ -29,7 +29,11 @@ pub enum LinearSolver {
 /// derivative computed from the states (the mass matrix the identity, every algebraic
 /// block solved inside, as for open chains and trees of bodies, and for loops whose
 /// constraints the compiler solves); a model with algebraic unknowns is refused with an
-/// error that names them.
+/// error that names them. They do not use [`SolverOptions::linear_solver`]: the implicit
+/// ones take a dense LU up to 24 states and the sparse LU above. ARKODE's methods give
+/// the requested output times and the states at events through ARKODE's interpolation
+/// (Hermite, degree 5 at most): between steps they are accurate to that degree, not to
+/// the method's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {
     /// For a model in ODE form, [`Verner8`](Self::Verner8), switching to

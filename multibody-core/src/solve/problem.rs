@@ -1591,7 +1591,7 @@ impl<'c> CompiledFunctions<'c> {
                     let r = &relations[k];
                     // A crossing function that starts at its zero starts on the side
                     // of its relation's value: by the hysteresis when only discrete
-                    // equations read it, else by the least positive number (exactly at
+                    // equations read it, else by the least positive normal number (exactly at
                     // zero, it would be inactive where the integration starts, and its
                     // leaving zero would go unseen).
                     let value = self.inputs[self.layout.param(r.parameter)] != 0.0;
