@@ -780,3 +780,67 @@ fn column_colouring_is_valid_with_and_without_a_full_row() {
     assert_eq!(c.colors[4], usize::MAX);
     assert!(coloring_is_valid(&full, &c.colors));
 }
+
+/// A tape over `vars` (the unknowns `u` in slots 0 and 1, their derivatives in 2 and 3,
+/// a parameter in 4) with outputs `u_k' - value` (`Ok(value)`, as the compiler writes a
+/// state's derivative) or an expression (`Err(expr)`).
+fn residual_tape(a: &Arena, vars: &[Id; 5], rows: &[(usize, Result<Id, Id>)]) -> Tape {
+    let mut b = TapeBuilder::new(a, 5);
+    for (i, &x) in vars.iter().enumerate() {
+        b.input(x, i);
+    }
+    for &(k, row) in rows {
+        match row {
+            Ok(value) => b.output_input_minus(2 + k, value).unwrap(),
+            Err(expr) => b.output(expr).unwrap(),
+        };
+    }
+    b.build()
+}
+
+#[test]
+fn explicit_residuals_are_derivatives_minus_what_the_states_give() {
+    let mut a = Arena::new();
+    let vars = [a.var(0), a.var(1), a.var(2), a.var(3), a.var(4)];
+    let [u0, u1, up0, up1, p] = vars;
+    // u0' = u1, u1' = -sin(u0) p: explicit.
+    let s = a.f1(Func1::Sin, u0);
+    let g1 = a.mul(s, p);
+    let g1 = a.neg(g1);
+    let explicit = [(0, Ok(u1)), (1, Ok(g1))];
+    assert!(residual_tape(&a, &vars, &explicit).is_explicit_in(2, 2));
+    // u1' alone (g = 0).
+    assert!(residual_tape(&a, &vars, &[(0, Ok(u1)), (1, Err(up1))]).is_explicit_in(2, 2));
+    // 2 u0' - u1: not the derivative itself.
+    let twice = a.scale(2.0, up0);
+    let bad = a.sub(twice, u1);
+    assert!(!residual_tape(&a, &vars, &[(0, Err(bad)), (1, Ok(g1))]).is_explicit_in(2, 2));
+    // u0' - u1': the other derivative in the value.
+    assert!(!residual_tape(&a, &vars, &[(0, Ok(up1)), (1, Ok(g1))]).is_explicit_in(2, 2));
+    // Rows in the wrong order: u1' first.
+    assert!(!residual_tape(&a, &vars, &[(1, Ok(g1)), (0, Ok(u1))]).is_explicit_in(2, 2));
+    // A derivative read through a linear solve: v solves u0 v = u1', then u0' - v.
+    let v = a.var(7);
+    let mut b = TapeBuilder::new(&a, 5);
+    for (i, &x) in vars.iter().enumerate() {
+        b.input(x, i);
+    }
+    b.stmt(&Stmt::LinearSolve {
+        targets: vec![v],
+        a: vec![u0],
+        c: vec![up1],
+    })
+    .unwrap();
+    b.output_input_minus(2, v).unwrap();
+    b.output_input_minus(3, g1).unwrap();
+    assert!(!b.build().is_explicit_in(2, 2));
+    // A further output (an observed value) that reads a derivative.
+    let mut b = TapeBuilder::new(&a, 5);
+    for (i, &x) in vars.iter().enumerate() {
+        b.input(x, i);
+    }
+    b.output_input_minus(2, u1).unwrap();
+    b.output_input_minus(3, g1).unwrap();
+    b.output(up0).unwrap();
+    assert!(!b.build().is_explicit_in(2, 2));
+}

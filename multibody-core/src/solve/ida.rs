@@ -989,6 +989,9 @@ pub struct Integrated {
     /// passed through zero rising, -1 falling, 0 where it did not (empty otherwise).
     /// The point of the crossing has been reported as an output.
     pub roots: Vec<i32>,
+    /// Whether the integration went over to a method for stiff models on the way
+    /// ([`OdeMethod::Auto`](super::ode::OdeMethod::Auto); always false for IDA).
+    pub switched: bool,
 }
 
 /// [`integrate`], with `on_step(t, y, yp)` called after every internal step (after the
@@ -1026,6 +1029,7 @@ pub fn integrate_monitored(
             stats: IdaStats::default(),
             stopped: None,
             roots: Vec::new(),
+            switched: false,
         });
     }
     let t_last = match output {
@@ -1090,6 +1094,7 @@ pub fn integrate_monitored(
                 stats: stats(mem),
                 stopped: None,
                 roots: Vec::new(),
+                switched: false,
             });
         }
         // The first call's target sets IDA's estimate of the first step: the first
@@ -1179,6 +1184,7 @@ pub fn integrate_monitored(
             stats: st,
             stopped,
             roots,
+            switched: false,
         })
     }
 }

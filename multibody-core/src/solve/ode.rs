@@ -131,8 +131,8 @@ pub enum OdeMethod {
     /// method's stability (its stability region reaches 5.9 along the negative real
     /// axis), not by its accuracy. Also where the right-hand side fails recoverably (a
     /// value out of its domain in a trial stage): the explicit stepper cannot retry
-    /// with a shorter step, BDF can. The decision holds for one integration (one
-    /// segment between events).
+    /// with a shorter step, BDF can. A solve keeps the decision for its later segments
+    /// (after events) too.
     Auto,
 }
 
@@ -882,6 +882,7 @@ pub fn integrate_monitored(
         stats.add(&run.integrated.stats);
     }
     run.integrated.stats = stats;
+    run.integrated.switched = current != method.first();
     Ok(run.integrated)
 }
 
@@ -967,6 +968,7 @@ fn integrate_run(
                     stats: stats(method, g.mem),
                     stopped: None,
                     roots: Vec::new(),
+                    switched: false,
                 },
                 stiff_at: None,
             });
@@ -1112,6 +1114,7 @@ fn integrate_run(
                 stats: st,
                 stopped,
                 roots,
+                switched: false,
             },
             stiff_at,
         })

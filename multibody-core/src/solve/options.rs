@@ -37,7 +37,7 @@ pub enum LinearSolver {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {
     /// For a model in ODE form, [`Verner8`](Self::Verner8), switching to
-    /// [`CvodeBdf`](Self::CvodeBdf) for the rest of the segment where the step size is
+    /// [`CvodeBdf`](Self::CvodeBdf) for the rest of the solve where the step size is
     /// held by the method's stability rather than its accuracy (the model is stiff
     /// there; checked every 25 steps from the Jacobian's largest eigenvalue, found by
     /// power iteration, times the step size); [`Ida`](Self::Ida) for a model with

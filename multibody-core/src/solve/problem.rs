@@ -740,6 +740,7 @@ impl<'a> DaeProblem<'a> {
             events: super::events::History::new(sys, self.tspan),
             specialized: None,
             terminated: None,
+            stiff: false,
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -1050,6 +1051,11 @@ impl<'a> DaeProblem<'a> {
         })?;
         let (settings, extended) = ida_settings(sys, c, options);
         let extended = extended && method.is_none();
+        // Once `Auto` found the model stiff, later segments start with BDF.
+        let method = method.map(|m| match m {
+            ode::OdeMethod::Auto if run.stiff => ode::OdeMethod::CvodeBdf,
+            m => m,
+        });
         let output = match output_times {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
@@ -1194,6 +1200,7 @@ impl<'a> DaeProblem<'a> {
             }
         };
         run.stats.add(&integrated.stats);
+        run.stiff |= integrated.switched;
         // Where the selection changes, the segment ends with a point of its own (at
         // an event, the integrator reported it).
         if let Some((t, y, yp)) = &integrated.stopped
@@ -1336,6 +1343,9 @@ struct Run {
     specialized: Option<(Vec<f64>, CompiledDae)>,
     /// Where and why a `terminate(..)` ended the run.
     terminated: Option<Termination>,
+    /// Whether `Method::Auto` found the model stiff in an earlier segment (the later
+    /// ones start with BDF).
+    stiff: bool,
 }
 
 impl Run {
