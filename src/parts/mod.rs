@@ -1,17 +1,25 @@
-//! Rigid parts (MSL `MultiBody.Parts`): fixed frames, translations and rotations, and
-//! bodies with mass and inertia, and drive trains on moving bodies.
+//! Parts (MSL `MultiBody.Parts`): fixed frames, translations and rotations, bodies with
+//! mass and inertia, drive trains on moving bodies, and a flexible beam of analytic
+//! eigenmodes (FlexibleBodies' beam).
 
+mod beam_modes;
 mod body;
 mod drive_train;
 mod fixed;
+mod flexible_beam;
 mod mass_properties;
 mod rolling_wheel;
 mod shapes;
 mod start_orientation;
 
+pub use beam_modes::{
+    BeamBoundary, CrossSection, ModeData, ModeKind, Shape, clamped_free_root, mode_data,
+    section_properties,
+};
 pub use body::*;
 pub use drive_train::*;
 pub use fixed::*;
+pub use flexible_beam::{FlexibleBeam, beam_modes};
 pub use mass_properties::MassProperties;
 pub use rolling_wheel::*;
 pub use shapes::*;
