@@ -1,30 +1,16 @@
 //! Ensembles: one compiled model solved for many values in parallel gives, in input
 //! order, what solving each alone gives; a bad entry fails alone.
 
-use multibody::joints::Revolute;
-use multibody::parts::{Body, FixedTranslation};
-use multibody::prelude::*;
-use multibody::world::World;
-use multibody::{EnsembleOptions, solve_ensemble};
+#[path = "support/small_models.rs"]
+mod small_models;
 
-/// A pendulum of a point mass on a massless link of tunable length `link.r[1]`.
-fn pendulum() -> System {
-    system! {
-        name: "pendulum";
-        world = World::default();
-        joint = Revolute::default();
-        link = FixedTranslation { r: [1.0, 0.0, 0.0] };
-        bob = Body { m: 1.0, I_11: 0.0, I_22: 0.0, I_33: 0.0 };
-        connect(world.frame_b, joint.frame_a);
-        connect(joint.frame_b, link.frame_a);
-        connect(link.frame_b, bob.frame_a);
-    }
-    .into()
-}
+use multibody::prelude::*;
+use multibody::{EnsembleOptions, solve_ensemble};
+use small_models::point_pendulum;
 
 #[test]
 fn an_ensemble_gives_each_solution_in_input_order() {
-    let ssys = structural_simplify(&pendulum()).unwrap();
+    let ssys = structural_simplify(&point_pendulum()).unwrap();
     let values: Vec<Vec<(String, f64)>> = (0..24)
         .map(|k| {
             vec![
@@ -59,7 +45,7 @@ fn an_ensemble_gives_each_solution_in_input_order() {
 
 #[test]
 fn a_bad_entry_fails_alone() {
-    let ssys = structural_simplify(&pendulum()).unwrap();
+    let ssys = structural_simplify(&point_pendulum()).unwrap();
     let values = vec![
         vec![("link.r[1]".to_string(), 0.7)],
         vec![("link.rr[1]".to_string(), 0.7)],

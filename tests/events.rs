@@ -5,8 +5,11 @@
 #![allow(missing_docs)]
 
 mod common;
+#[path = "support/small_models.rs"]
+mod small_models;
 
 use common::tight_options as options;
+use small_models::BouncingBall;
 
 use std::f64::consts::PI;
 
@@ -211,30 +214,6 @@ fn a_step_source_switches_at_its_start_time() {
         "{:?}",
         sol.statistics()
     );
-}
-
-component! {
-    /// A ball bouncing on the ground `h = 0` with a coefficient of restitution `e`.
-    pub struct BouncingBall {
-        /// Gravity \[m/s2\].
-        parameter g: f64 = 9.81;
-        /// Coefficient of restitution.
-        parameter e: f64 = 0.8;
-        /// Height \[m\].
-        variable h(start = 1.0, fixed = true): Real;
-        /// Velocity \[m/s\].
-        variable v(start = 0.0, fixed = true): Real;
-        /// Number of bounces.
-        variable bounces(start = 0.0): Real;
-        equation {
-            der(h) = v;
-            der(v) = -g;
-            when lt(h, 0.0) {
-                reinit(v, -e * pre(v));
-                bounces = pre(bounces) + 1.0;
-            }
-        }
-    }
 }
 
 #[test]

@@ -3,13 +3,15 @@
 //! changed without recompiling; the automatic choice on a non-stiff and a stiff model;
 //! the error of an ODE method asked of a model with algebraic unknowns.
 
-use multibody::blocks::Constant;
-use multibody::joints::Revolute;
-use multibody::parts::{Body, FixedTranslation};
+#[path = "support/small_models.rs"]
+mod small_models;
+#[path = "../examples/bench_pendulum_chain/stiff_chain.rs"]
+mod stiff;
+
 use multibody::prelude::*;
-use multibody::translational::{Damper, Fixed, Force, Mass, Spring};
-use multibody::world::World;
 use multibody::{Error, Method, Solution};
+use small_models::{BouncingBall, point_pendulum};
+use stiff::stiff_chain;
 
 const ALL: [Method; 10] = [
     Method::Auto,
@@ -23,21 +25,6 @@ const ALL: [Method; 10] = [
     Method::Verner9,
     Method::Kvaerno5,
 ];
-
-/// A point mass on a massless link of tunable length `link.r[1]`.
-fn pendulum() -> System {
-    system! {
-        name: "pendulum";
-        world = World::default();
-        joint = Revolute::default();
-        link = FixedTranslation { r: [1.0, 0.0, 0.0] };
-        bob = Body { m: 1.0, I_11: 0.0, I_22: 0.0, I_33: 0.0 };
-        connect(world.frame_b, joint.frame_a);
-        connect(joint.frame_b, link.frame_a);
-        connect(link.frame_b, bob.frame_a);
-    }
-    .into()
-}
 
 /// The complete elliptic integral of the first kind K(k), by the arithmetic-geometric
 /// mean.
@@ -61,11 +48,11 @@ fn options(method: Method, rtol: f64) -> SolverOptions {
 }
 
 #[test]
-fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
+fn every_method_gives_the_period_of_a_large_amplitude_point_pendulum() {
     // Released at rest from phi0 below the horizontal (the link along x, gravity -y):
     // the period of the swing is 4 sqrt(L/g) K(sin(amplitude / 2)), where the amplitude
     // is measured from the lowest point (phi = -pi/2).
-    let ssys = structural_simplify(&pendulum()).unwrap();
+    let ssys = structural_simplify(&point_pendulum()).unwrap();
     let g = 9.80665;
     let mut steps_by_method = Vec::new();
     for length in [1.0f64, 0.5] {
@@ -136,27 +123,6 @@ fn every_method_gives_the_period_of_a_large_amplitude_pendulum() {
     assert_eq!(distinct.len(), ALL.len() - 1, "{steps_by_method:?}");
 }
 
-component! {
-    /// A ball bouncing on the ground `h = 0` with a coefficient of restitution `e`.
-    pub struct BouncingBall {
-        /// Gravity \[m/s2\].
-        parameter g: f64 = 9.81;
-        /// Coefficient of restitution.
-        parameter e: f64 = 0.8;
-        /// Height \[m\].
-        variable h(start = 1.0, fixed = true): Real;
-        /// Velocity \[m/s\].
-        variable v(start = 0.0, fixed = true): Real;
-        equation {
-            der(h) = v;
-            der(v) = -g;
-            when lt(h, 0.0) {
-                reinit(v, -e * pre(v));
-            }
-        }
-    }
-}
-
 #[test]
 fn every_method_finds_the_bounces_at_their_closed_form_times() {
     let (g, e, h0): (f64, f64, f64) = (9.81, 0.8, 1.0);
@@ -191,35 +157,6 @@ fn every_method_finds_the_bounces_at_their_closed_form_times() {
     }
 }
 
-/// `n` masses of 1 kg in a row from a fixed wall, each joined to the one before by a
-/// spring `c` and a damper `d` in parallel, the last pulled by a constant force `force`.
-fn stiff_chain(n: usize, c: f64, d: f64, force: f64) -> System {
-    let mut m = System::new("stiff_chain");
-    let wall = m.add_typed("wall", &Fixed::default());
-    let mut prev = wall.flange;
-    for k in 1..=n {
-        let spring = m.add_typed(
-            &format!("spring{k}"),
-            &Spring {
-                c,
-                ..Default::default()
-            },
-        );
-        let damper = m.add_typed(&format!("damper{k}"), &Damper { d });
-        let mass = m.add_typed(&format!("mass{k}"), &Mass::default());
-        m.connect_handles(&prev, &spring.flange_a);
-        m.connect_handles(&prev, &damper.flange_a);
-        m.connect_handles(&spring.flange_b, &mass.flange_a);
-        m.connect_handles(&damper.flange_b, &mass.flange_a);
-        prev = mass.flange_b;
-    }
-    let pull = m.add_typed("pull", &Force::default());
-    let value = m.add_typed("value", &Constant { k: force });
-    m.connect_handles(&value.y, &pull.f);
-    m.connect_handles(&pull.flange, &prev);
-    m
-}
-
 fn steps(sol: &Solution) -> u64 {
     sol.statistics().steps
 }
@@ -227,7 +164,7 @@ fn steps(sol: &Solution) -> u64 {
 #[test]
 fn the_automatic_choice_stays_explicit_on_a_smooth_model_and_takes_bdf_on_a_stiff_one() {
     // Smooth: the pendulum. Auto takes Verner 8(7) throughout: the same steps.
-    let ssys = structural_simplify(&pendulum()).unwrap();
+    let ssys = structural_simplify(&point_pendulum()).unwrap();
     let solve = |method| {
         DaeProblem::new(&ssys, &[("joint.phi", 0.3)], (0.0, 10.0))
             .unwrap()

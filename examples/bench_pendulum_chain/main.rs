@@ -39,6 +39,7 @@
 mod aba;
 mod methods;
 mod rne;
+mod stiff_chain;
 
 use std::time::Instant;
 

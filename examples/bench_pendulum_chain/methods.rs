@@ -11,6 +11,7 @@ use multibody_core::solve::ode::{self, OdeMethod};
 
 use super::aba::Aba;
 use super::rne::Link;
+use super::stiff_chain::stiff_chain;
 use super::{ATOL, G, I_ZZ, L, M, RTOL, T_CHECK, T_END};
 
 /// The methods compared, with the ARKODE table of the explicit ones.
@@ -129,42 +130,9 @@ pub fn rows(n: usize, ssys: &SimplifiedSystem, reps: usize) -> Result<(), multib
     Ok(())
 }
 
-/// `n` masses of 1 kg in a row from a wall, each joined to the one before by a spring
-/// of 1e4 N/m and a damper of 300 N s/m in parallel, the last pulled by 50 N: modes
-/// from about -1100 /s to a slow one decaying at 12 /s (stiff).
-fn stiff_chain(n: usize) -> System {
-    use multibody::blocks::Constant;
-    use multibody::translational::{Damper, Fixed, Force, Mass, Spring};
-    let mut m = System::new(format!("stiff_chain{n}"));
-    let wall = m.add_typed("wall", &Fixed::default());
-    let mut prev = wall.flange;
-    for k in 1..=n {
-        let c = 1e4;
-        let spring = m.add_typed(
-            &format!("spring{k}"),
-            &Spring {
-                c,
-                ..Default::default()
-            },
-        );
-        let damper = m.add_typed(&format!("damper{k}"), &Damper { d: 300.0 });
-        let mass = m.add_typed(&format!("mass{k}"), &Mass::default());
-        m.connect_handles(&prev, &spring.flange_a);
-        m.connect_handles(&prev, &damper.flange_a);
-        m.connect_handles(&spring.flange_b, &mass.flange_a);
-        m.connect_handles(&damper.flange_b, &mass.flange_a);
-        prev = mass.flange_b;
-    }
-    let pull = m.add_typed("pull", &Force::default());
-    let value = m.add_typed("value", &Constant { k: 50.0 });
-    m.connect_handles(&value.y, &pull.f);
-    m.connect_handles(&pull.flange, &prev);
-    m
-}
-
 /// Prints a row per method for the stiff chain of `n` masses over `T_END`.
 pub fn stiff_rows(n: usize) -> Result<(), multibody::Error> {
-    let ssys = structural_simplify(&stiff_chain(n))?;
+    let ssys = structural_simplify(&stiff_chain(n, 1e4, 300.0, 50.0))?;
     let problem = DaeProblem::new(&ssys, &[], (0.0, T_END))?;
     for method in [
         Method::Ida,

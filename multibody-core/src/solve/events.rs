@@ -380,7 +380,7 @@ fn settle_with(
         // discrete values, then the relations and the discrete equations from them,
         // until they agree.
         let consistent = |params: &[f64], y: &[f64], yp: &[f64]| {
-            let (settings, extended) = ida_settings(sys, c, options);
+            let (settings, extended) = ida_settings(sys, c, options, true);
             let mut f = CompiledFunctions::new(c, params, extended);
             ida::consistent_values(&mut f, t, y, yp, &settings, tout1).map_err(|e| {
                 Error::from(SolveError {

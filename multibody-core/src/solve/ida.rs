@@ -20,7 +20,9 @@ use sundials_sys as sys;
 pub use crate::codegen::EvalError;
 
 use super::linsol;
-use super::sundials::{Callback, EvalLog, Objects, origin_name, scatter_dense, vec_mut, vec_ref};
+use super::sundials::{
+    Callback, EvalLog, Objects, origin_name, scatter_dense, vec_mut, vec_ref, write_csc_pattern,
+};
 
 /// The DAE F(t, y, y') = 0 with its Jacobian J = dF/dy + cj dF/dy'.
 pub trait DaeFunctions {
@@ -193,8 +195,6 @@ pub(super) fn invalid(t: f64, message: impl Into<String>) -> IdaError {
 struct CallbackData<'a> {
     f: &'a mut dyn DaeFunctions,
     n: usize,
-    /// Size of the Jacobian matrix (`n`, or more for an extended Jacobian).
-    dim: usize,
     solver: IdaMatrix,
     /// Validated pattern (usize, for scattering into the dense matrix).
     col_ptr: Vec<usize>,
@@ -506,19 +506,12 @@ unsafe extern "C" fn jacobian_cb(
             };
             let n = d.n;
             let (y, ypv) = (vec_ref(yy, n), vec_ref(yp, n));
-            let nnz = d.row_idx.len();
             match d.solver {
                 IdaMatrix::SparseLu => {
-                    let ptrs = sys::SUNSparseMatrix_IndexPointers(jac);
-                    let rows = sys::SUNSparseMatrix_IndexValues(jac);
-                    let data = sys::SUNSparseMatrix_Data(jac);
-                    if ptrs.is_null() || rows.is_null() || data.is_null() {
-                        return -1;
-                    }
                     // IDA zeroes the matrix, including its pattern, before every call.
-                    ptr::copy_nonoverlapping(d.col_ptr_i.as_ptr(), ptrs, d.dim + 1);
-                    ptr::copy_nonoverlapping(d.row_idx_i.as_ptr(), rows, nnz);
-                    let values = std::slice::from_raw_parts_mut(data, nnz);
+                    let Some(values) = write_csc_pattern(jac, &d.col_ptr_i, &d.row_idx_i) else {
+                        return -1;
+                    };
                     match d.f.jacobian(t, y, ypv, cj, values) {
                         Ok(()) => 0,
                         Err(e) => d.log.record(t, Callback::Jacobian, e),
@@ -710,7 +703,6 @@ fn open<'a>(
     let data = CallbackData {
         f,
         n,
-        dim,
         solver: settings.matrix,
         col_ptr_i: col_ptr.iter().map(|&v| v as sys::sunindextype).collect(),
         row_idx_i: row_idx.iter().map(|&v| v as sys::sunindextype).collect(),

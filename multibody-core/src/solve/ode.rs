@@ -25,6 +25,7 @@ use super::ida::{
 use super::linsol;
 use super::sundials::{
     Callback, EvalLog, Objects, not_finite, origin_name, scatter_dense, vec_mut, vec_ref,
+    write_csc_pattern,
 };
 
 /// An ODE `u' = f(t, u)` with, optionally, its Jacobian `df/du` and crossing functions.
@@ -494,7 +495,6 @@ unsafe extern "C" fn jacobian_cb(
             };
             let n = d.n;
             let y = vec_ref(y, n);
-            let nnz = d.row_idx.len();
             let OdeData { f, values, .. } = &mut *d;
             if let Err(e) = f.jacobian(t, y, values) {
                 return d.log.record(t, Callback::Jacobian, e);
@@ -510,21 +510,10 @@ unsafe extern "C" fn jacobian_cb(
                 let dense = std::slice::from_raw_parts_mut(data, n * n);
                 scatter_dense(n, &d.col_ptr, &d.row_idx, &d.values, dense);
             } else {
-                if (sys::SUNSparseMatrix_NNZ(jac) as usize) < nnz {
-                    let flag = sys::SUNSparseMatrix_Reallocate(jac, nnz as sys::sunindextype);
-                    if flag != 0 {
-                        return -1;
-                    }
-                }
-                let ptrs = sys::SUNSparseMatrix_IndexPointers(jac);
-                let rows = sys::SUNSparseMatrix_IndexValues(jac);
-                let data = sys::SUNSparseMatrix_Data(jac);
-                if ptrs.is_null() || rows.is_null() || data.is_null() {
+                let Some(data) = write_csc_pattern(jac, &d.col_ptr_i, &d.row_idx_i) else {
                     return -1;
-                }
-                ptr::copy_nonoverlapping(d.col_ptr_i.as_ptr(), ptrs, n + 1);
-                ptr::copy_nonoverlapping(d.row_idx_i.as_ptr(), rows, nnz);
-                ptr::copy_nonoverlapping(d.values.as_ptr(), data, nnz);
+                };
+                data.copy_from_slice(&d.values);
             }
             0
         }

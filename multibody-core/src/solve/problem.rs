@@ -1049,8 +1049,7 @@ impl<'a> DaeProblem<'a> {
             flag: "BAD_METHOD".into(),
             message,
         })?;
-        let (settings, extended) = ida_settings(sys, c, options);
-        let extended = extended && method.is_none();
+        let (settings, extended) = ida_settings(sys, c, options, method.is_none());
         // Once `Auto` found the model stiff, later segments start with BDF.
         let method = method.map(|m| match m {
             ode::OdeMethod::Auto if run.stiff => ode::OdeMethod::CvodeBdf,
@@ -1488,16 +1487,20 @@ pub(super) fn ode_method(
 }
 
 /// IDA's settings for `sys` with the compiled functions `c` (the system's own, or
-/// specialized to parameter values), and whether the extended Jacobian is used.
+/// specialized to parameter values), and whether the extended Jacobian is used (never
+/// analysed without `for_ida`: the ODE methods factor the plain Jacobian).
 pub(super) fn ida_settings(
     sys: &SimplifiedSystem,
     c: &CompiledDae,
     options: &SolverOptions,
+    for_ida: bool,
 ) -> (IdaSettings, bool) {
     let n = sys.sorted.mass_matrix_diagonal.len();
     let (matrix, extended) = match options.linear_solver {
         LinearSolver::Auto if n <= 24 => (IdaMatrix::Dense, false),
-        LinearSolver::Auto | LinearSolver::Sparse => (IdaMatrix::SparseLu, c.extended().is_some()),
+        LinearSolver::Auto | LinearSolver::Sparse => {
+            (IdaMatrix::SparseLu, for_ida && c.extended().is_some())
+        }
         LinearSolver::SparsePlain => (IdaMatrix::SparseLu, false),
         LinearSolver::Dense => (IdaMatrix::Dense, false),
         LinearSolver::DenseDifferenceQuotient => (IdaMatrix::DenseDifferenceQuotient, false),

@@ -272,3 +272,35 @@ pub(super) fn not_finite(values: &[f64], what: &str) -> Option<EvalError> {
             recoverable: true,
         })
 }
+
+/// Writes the CSC pattern (`col_ptr`, `row_idx`) into the SUNDIALS sparse matrix `jac`
+/// (growing its storage if needed) and returns its value array (`row_idx.len()`
+/// entries, in the pattern's order), or `None` where SUNDIALS fails.
+///
+/// # Safety
+/// `jac` is a valid CSC `SUNSparseMatrix` with `col_ptr.len() - 1` columns, not
+/// otherwise borrowed while the slice lives.
+pub(super) unsafe fn write_csc_pattern<'a>(
+    jac: sys::SUNMatrix,
+    col_ptr: &[sys::sunindextype],
+    row_idx: &[sys::sunindextype],
+) -> Option<&'a mut [f64]> {
+    let nnz = row_idx.len();
+    // SAFETY: guaranteed by the caller; the copies fit the storage checked here.
+    unsafe {
+        if (sys::SUNSparseMatrix_NNZ(jac) as usize) < nnz
+            && sys::SUNSparseMatrix_Reallocate(jac, nnz as sys::sunindextype) != 0
+        {
+            return None;
+        }
+        let ptrs = sys::SUNSparseMatrix_IndexPointers(jac);
+        let rows = sys::SUNSparseMatrix_IndexValues(jac);
+        let data = sys::SUNSparseMatrix_Data(jac);
+        if ptrs.is_null() || rows.is_null() || data.is_null() {
+            return None;
+        }
+        ptr::copy_nonoverlapping(col_ptr.as_ptr(), ptrs, col_ptr.len());
+        ptr::copy_nonoverlapping(row_idx.as_ptr(), rows, nnz);
+        Some(std::slice::from_raw_parts_mut(data, nnz))
+    }
+}
