@@ -21,7 +21,8 @@ pub use crate::codegen::EvalError;
 
 use super::linsol;
 use super::sundials::{
-    Callback, EvalLog, Objects, origin_name, scatter_dense, vec_mut, vec_ref, write_csc_pattern,
+    Callback, EvalLog, Objects, not_finite, origin_name, scatter_dense, vec_mut, vec_ref,
+    write_csc_pattern,
 };
 
 /// The DAE F(t, y, y') = 0 with its Jacobian J = dF/dy + cj dF/dy'.
@@ -419,19 +420,13 @@ unsafe extern "C" fn residual_cb(
             };
             let n = d.n;
             let (y, ypv, out) = (vec_ref(yy, n), vec_ref(yp, n), vec_mut(rr, n));
-            match d.f.residual(t, y, ypv, out) {
-                Ok(()) => match out.iter().position(|v| !v.is_finite()) {
-                    None => 0,
-                    Some(i) => d.log.record(
-                        t,
-                        Callback::Residual,
-                        EvalError {
-                            message: format!("residual component {i} is not finite"),
-                            recoverable: true,
-                        },
-                    ),
-                },
-                Err(e) => d.log.record(t, Callback::Residual, e),
+            match d
+                .f
+                .residual(t, y, ypv, out)
+                .map(|()| not_finite(out, "residual component"))
+            {
+                Ok(None) => 0,
+                Ok(Some(e)) | Err(e) => d.log.record(t, Callback::Residual, e),
             }
         }
     }));
@@ -457,26 +452,8 @@ unsafe extern "C" fn root_cb(
             let nr = d.f.n_roots();
             let (y, ypv) = (vec_ref(yy, n), vec_ref(yp, n));
             let out = std::slice::from_raw_parts_mut(gout, nr);
-            match d.f.roots(t, y, ypv, out) {
-                Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
-                Ok(()) => d.log.record(
-                    t,
-                    Callback::Roots,
-                    EvalError {
-                        message: "a crossing function is not finite".into(),
-                        recoverable: false,
-                    },
-                ),
-                // IDA cannot recover from a failing root function.
-                Err(e) => d.log.record(
-                    t,
-                    Callback::Roots,
-                    EvalError {
-                        recoverable: false,
-                        ..e
-                    },
-                ),
-            }
+            let result = d.f.roots(t, y, ypv, out);
+            d.log.record_roots(t, result, out)
         }
     }));
     // SAFETY: the borrow inside the closure has ended.
@@ -522,15 +499,8 @@ unsafe extern "C" fn jacobian_cb(
                     if let Err(e) = f.jacobian(t, y, ypv, cj, values) {
                         return d.log.record(t, Callback::Jacobian, e);
                     }
-                    if let Some(k) = d.values.iter().position(|v| !v.is_finite()) {
-                        return d.log.record(
-                            t,
-                            Callback::Jacobian,
-                            EvalError {
-                                message: format!("Jacobian entry {k} is not finite"),
-                                recoverable: true,
-                            },
-                        );
+                    if let Some(e) = not_finite(&d.values, "Jacobian entry") {
+                        return d.log.record(t, Callback::Jacobian, e);
                     }
                     let data = sys::SUNDenseMatrix_Data(jac);
                     if data.is_null() {

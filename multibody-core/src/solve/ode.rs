@@ -450,25 +450,7 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
             let out = std::slice::from_raw_parts_mut(gout, d.n_roots);
             let OdeData { f, ydot, .. } = &mut *d;
             let result = f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out));
-            match result {
-                Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
-                Ok(()) => d.log.record(
-                    t,
-                    Callback::Roots,
-                    EvalError {
-                        message: "a crossing function is not finite".into(),
-                        recoverable: false,
-                    },
-                ),
-                Err(e) => d.log.record(
-                    t,
-                    Callback::Roots,
-                    EvalError {
-                        recoverable: false,
-                        ..e
-                    },
-                ),
-            }
+            d.log.record_roots(t, result, out)
         }
     }));
     // SAFETY: the borrow inside the closure has ended.

@@ -50,6 +50,35 @@ impl EvalLog {
         code
     }
 
+    /// The return code of a crossing-function callback with `result` and values `out`:
+    /// 0, or the failure recorded as unrecoverable (no integrator recovers from one).
+    pub(super) fn record_roots(
+        &mut self,
+        t: f64,
+        result: Result<(), EvalError>,
+        out: &[f64],
+    ) -> c_int {
+        match result {
+            Ok(()) if out.iter().all(|v| v.is_finite()) => 0,
+            Ok(()) => self.record(
+                t,
+                Callback::Roots,
+                EvalError {
+                    message: "a crossing function is not finite".into(),
+                    recoverable: false,
+                },
+            ),
+            Err(e) => self.record(
+                t,
+                Callback::Roots,
+                EvalError {
+                    recoverable: false,
+                    ..e
+                },
+            ),
+        }
+    }
+
     /// Records a caught panic as an unrecoverable evaluation error.
     pub(super) fn record_panic(
         &mut self,
