@@ -457,6 +457,36 @@ pub mod __private {
         }
     }
 
+    /// A structural parameter's value on its way to [`System::record_structural`]:
+    /// `(&Recorded(&v)).numbers()` is its numbers when its type is a
+    /// [`StructuralValue`], `None` otherwise (autoref specialization).
+    pub struct Recorded<'a, T>(pub &'a T);
+
+    /// The numbers of a [`StructuralValue`] (the preferred method of [`Recorded`]).
+    pub trait RecordsNumbers {
+        /// The value as numbers.
+        fn numbers(&self) -> Option<Vec<f64>>;
+    }
+
+    impl<T: StructuralValue> RecordsNumbers for Recorded<'_, T> {
+        fn numbers(&self) -> Option<Vec<f64>> {
+            self.0.structural_values()
+        }
+    }
+
+    /// Nothing, for a type that is not a [`StructuralValue`] (the fallback method of
+    /// [`Recorded`], found one autoref later).
+    pub trait RecordsNothing {
+        /// `None`.
+        fn numbers(&self) -> Option<Vec<f64>>;
+    }
+
+    impl<T> RecordsNothing for &Recorded<'_, T> {
+        fn numbers(&self) -> Option<Vec<f64>> {
+            None
+        }
+    }
+
     /// The functions equations use (`der`, `sin`, ...).
     pub mod dsl {
         pub use crate::functions::*;

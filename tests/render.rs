@@ -371,3 +371,67 @@ fn bad_requests_are_errors() {
     .unwrap_err();
     assert!(matches!(err, RenderError::Write { .. }), "{err}");
 }
+
+#[test]
+fn a_flexible_beam_is_drawn_bent_along_its_deflection_curve() {
+    use multibody::blocks::Constant3;
+    use multibody::forces::WorldForce;
+    use multibody::parts::{CrossSection, FlexibleBeam, section_properties};
+    // A critically damped 5 cm square cantilever along x, settled under a load -P y at
+    // its end that bends it 0.4 m down.
+    let beam = FlexibleBeam {
+        cross_section: CrossSection::Rectangle {
+            width: 0.05,
+            height: 0.05,
+        },
+        n_bending_xz: 0,
+        damping: 1.0,
+        ..FlexibleBeam::default()
+    };
+    let (l, ei) = (beam.l, beam.E * section_properties(beam.cross_section).2);
+    let p = 0.4 * 3.0 * ei / l.powi(3);
+    let model = system! {
+        name: "bent";
+        world = World { g: 0.0, ..Default::default() };
+        beam = beam;
+        load = WorldForce::default();
+        value = Constant3 { k: [0.0, -p, 0.0] };
+        connect(world.frame_b, beam.frame_a);
+        connect(beam.frame_b, load.frame_b);
+        connect(value.y, load.force);
+    };
+    let ssys = structural_simplify(&model).unwrap();
+    let t = 0.5;
+    let sol = DaeProblem::new(&ssys, &[], (0.0, t))
+        .unwrap()
+        .solve(&SolverOptions::default())
+        .unwrap();
+    // The closed-form deflection curve w(x) = -P x^2 (3 l - x) / (6 E I).
+    let w = |x: f64| -p * x * x * (3.0 * l - x) / (6.0 * ei);
+    let tip = sol.at("beam.u_b[2]", t).unwrap();
+    assert!((tip - w(l)).abs() < 0.01 * w(l).abs(), "{tip} vs {}", w(l));
+    let (d, fov, size) = (2.5, 50.0, (400, 400));
+    let centre = [0.8, -0.2, 0.0];
+    let options = RenderOptions {
+        fov,
+        times: Some(vec![t]),
+        ..bare(size.0, size.1, [centre[0], centre[1], d], centre)
+    };
+    let path = out("render_bent_beam.gif");
+    render(&model, &sol, &path, &options).unwrap();
+    let (_, _, frames) = decode(&path);
+    let pixels = &frames[0].1;
+    let pixel = |q: [f64; 3]| {
+        let (x, y) = project(std::array::from_fn(|i| q[i] - centre[i]), d, fov, size);
+        let i = 4 * (y as usize * size.0 as usize + x as usize);
+        [pixels[i], pixels[i + 1], pixels[i + 2]]
+    };
+    // On the curve: the beam's colour; on the chord from the root to the end (7.5 cm
+    // above the curve at the middle): background.
+    for x in [0.25 * l, 0.5 * l, 0.75 * l] {
+        let c = pixel([x, w(x), 0.0]);
+        assert!(is_link(c), "on the curve at x = {x}: {c:?}");
+    }
+    let c = pixel([0.5 * l, 0.5 * w(l), 0.0]);
+    assert_eq!(c, [255, 255, 255], "on the chord");
+}

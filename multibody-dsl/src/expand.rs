@@ -9,17 +9,6 @@ use crate::ast::*;
 use crate::equations;
 
 /// Where the generated code finds the library.
-/// Whether a structural parameter's type is recorded as numbers: `f64`, `bool`,
-/// `usize`, arrays of `f64` and options of these.
-fn records_as_numbers(ty: &syn::Type) -> bool {
-    let t = quote!(#ty).to_string().replace(' ', "");
-    let inner = t
-        .strip_prefix("Option<")
-        .and_then(|r| r.strip_suffix('>'))
-        .unwrap_or(&t);
-    matches!(inner, "f64" | "bool" | "usize") || inner.starts_with("[f64;")
-}
-
 fn lib() -> TokenStream {
     quote!(::multibody::__private)
 }
@@ -218,12 +207,13 @@ pub fn component(def: &ComponentDef) -> syn::Result<TokenStream> {
                 fields.extend(quote!(#docs #dd pub #n: #ty,));
                 defaults.extend(quote!(#n: #default,));
                 structural.extend(quote!(let #n: #ty = ::core::clone::Clone::clone(&self.#n);));
-                if records_as_numbers(ty) {
-                    let s = n.to_string();
-                    structural.extend(quote!(
-                        __s.record_structural(#s, #p::StructuralValue::structural_values(&#n));
-                    ));
-                }
+                // Recorded as numbers when the type is a `StructuralValue` (autoref
+                // specialization: other types record nothing).
+                let s = n.to_string();
+                structural.extend(quote!({
+                    use #p::{RecordsNothing as _, RecordsNumbers as _};
+                    __s.record_structural(#s, (&#p::Recorded(&#n)).numbers());
+                }));
             }
             Item::Connector {
                 docs,

@@ -2,6 +2,8 @@
 //! lengthening as a rod) and the modal integrals a beam in a floating frame of reference
 //! needs, by numerical quadrature of the shapes. Plain numbers, no model.
 
+use multibody_core::model::StructuralValue;
+
 /// How the beam's floating frame is attached, which fixes the modes' boundary
 /// conditions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -13,6 +15,27 @@ pub enum BeamBoundary {
     /// Supported (no displacement, free slope) at both ends: the frame is the chord
     /// frame from `frame_a` to `frame_b`.
     SupportedSupported,
+}
+
+impl StructuralValue for BeamBoundary {
+    /// 0 for clamped-free, 1 for supported-supported.
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(vec![match self {
+            BeamBoundary::ClampedFree => 0.0,
+            BeamBoundary::SupportedSupported => 1.0,
+        }])
+    }
+}
+
+impl BeamBoundary {
+    /// The boundary recorded as `numbers` ([`StructuralValue`]).
+    pub fn from_numbers(numbers: &[f64]) -> Option<BeamBoundary> {
+        match numbers {
+            [x] if *x == 0.0 => Some(BeamBoundary::ClampedFree),
+            [x] if *x == 1.0 => Some(BeamBoundary::SupportedSupported),
+            _ => None,
+        }
+    }
 }
 
 /// The cross-section of a beam.
@@ -53,6 +76,50 @@ impl Default for CrossSection {
             height: 0.03,
             t_bar: 0.001,
             t_flange: 0.001,
+        }
+    }
+}
+
+impl StructuralValue for CrossSection {
+    /// A tag (0 rectangle, 1 circle, 2 I-profile) and the dimensions in declaration
+    /// order.
+    fn structural_values(&self) -> Option<Vec<f64>> {
+        Some(match *self {
+            CrossSection::Rectangle { width, height } => vec![0.0, width, height],
+            CrossSection::Circle { diameter } => vec![1.0, diameter],
+            CrossSection::IBeam {
+                width,
+                height,
+                t_bar,
+                t_flange,
+            } => vec![2.0, width, height, t_bar, t_flange],
+        })
+    }
+}
+
+impl CrossSection {
+    /// The section recorded as `numbers` ([`StructuralValue`]).
+    pub fn from_numbers(numbers: &[f64]) -> Option<CrossSection> {
+        match *numbers {
+            [t, width, height] if t == 0.0 => Some(CrossSection::Rectangle { width, height }),
+            [t, diameter] if t == 1.0 => Some(CrossSection::Circle { diameter }),
+            [t, width, height, t_bar, t_flange] if t == 2.0 => Some(CrossSection::IBeam {
+                width,
+                height,
+                t_bar,
+                t_flange,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Extents along y and z \[m\].
+    pub fn extents(&self) -> (f64, f64) {
+        match *self {
+            CrossSection::Rectangle { width, height } | CrossSection::IBeam { width, height, .. } => {
+                (width, height)
+            }
+            CrossSection::Circle { diameter } => (diameter, diameter),
         }
     }
 }
@@ -182,6 +249,32 @@ impl Shape {
     }
 }
 
+/// The shapes of a beam of length `l` with `counts` lengthening, xy-bending and
+/// xz-bending modes, each with its direction of displacement in the beam's frame, in
+/// the order of the beam's modal coordinates.
+pub fn mode_shapes(l: f64, boundary: BeamBoundary, counts: [usize; 3]) -> Vec<(Shape, [f64; 3])> {
+    let families = [
+        (ModeKind::Lengthening, [1.0, 0.0, 0.0]),
+        (ModeKind::BendingXy, [0.0, 1.0, 0.0]),
+        (ModeKind::BendingXz, [0.0, 0.0, 1.0]),
+    ];
+    families
+        .into_iter()
+        .zip(counts)
+        .flat_map(|((kind, dir), count)| {
+            (1..=count).map(move |n| {
+                let shape = Shape {
+                    kind,
+                    n,
+                    boundary,
+                    l,
+                };
+                (shape, dir)
+            })
+        })
+        .collect()
+}
+
 /// The modal data of one mode for a beam of density `rho`, area `a` and stiffness
 /// `stiffness` (`E A` for lengthening, `E I` for bending).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -242,6 +335,26 @@ pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sections_and_boundaries_are_recorded_as_numbers_and_read_back() {
+        for s in [
+            CrossSection::Rectangle {
+                width: 0.1,
+                height: 0.2,
+            },
+            CrossSection::Circle { diameter: 0.3 },
+            CrossSection::default(),
+        ] {
+            let numbers = s.structural_values().unwrap();
+            assert_eq!(CrossSection::from_numbers(&numbers), Some(s));
+        }
+        for b in [BeamBoundary::ClampedFree, BeamBoundary::SupportedSupported] {
+            let numbers = b.structural_values().unwrap();
+            assert_eq!(BeamBoundary::from_numbers(&numbers), Some(b));
+        }
+        assert_eq!(CrossSection::from_numbers(&[3.0, 1.0]), None);
+    }
 
     #[test]
     fn clamped_free_roots_are_the_textbook_ones() {

@@ -1,7 +1,7 @@
 //! A flexible beam in a floating frame of reference with analytic eigenmodes.
 
 use super::beam_modes::{
-    BeamBoundary, CrossSection, ModeData, ModeKind, Shape, mode_data, section_properties,
+    BeamBoundary, CrossSection, ModeData, ModeKind, mode_data, mode_shapes, section_properties,
 };
 use crate::blocks::StateVector;
 use crate::frames::{
@@ -35,24 +35,17 @@ fn modes_of(
     counts: [usize; 3],
 ) -> Vec<(ModeData, [f64; 3])> {
     let (a, i_y, i_z) = section_properties(section);
-    let families = [
-        (ModeKind::Lengthening, counts[0], e * a, [1.0, 0.0, 0.0]),
-        (ModeKind::BendingXy, counts[1], e * i_z, [0.0, 1.0, 0.0]),
-        (ModeKind::BendingXz, counts[2], e * i_y, [0.0, 0.0, 1.0]),
-    ];
-    let mut modes = Vec::new();
-    for (kind, count, stiffness, dir) in families {
-        for n in 1..=count {
-            let shape = Shape {
-                kind,
-                n,
-                boundary,
-                l,
+    mode_shapes(l, boundary, counts)
+        .into_iter()
+        .map(|(shape, dir)| {
+            let stiffness = match shape.kind {
+                ModeKind::Lengthening => e * a,
+                ModeKind::BendingXy => e * i_z,
+                ModeKind::BendingXz => e * i_y,
             };
-            modes.push((mode_data(shape, rho, a, stiffness), dir));
-        }
-    }
-    modes
+            (mode_data(shape, rho, a, stiffness), dir)
+        })
+        .collect()
 }
 
 component! {

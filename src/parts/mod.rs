@@ -14,7 +14,7 @@ mod start_orientation;
 
 pub use beam_modes::{
     BeamBoundary, CrossSection, ModeData, ModeKind, Shape, clamped_free_root, mode_data,
-    section_properties,
+    mode_shapes, section_properties,
 };
 pub use body::*;
 pub use drive_train::*;

@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 
 use crate::System;
+use crate::parts::{BeamBoundary, CrossSection, mode_shapes};
 
 use super::geom::{V3, norm};
 use super::mesh::Mesh;
@@ -97,10 +98,35 @@ impl Scene {
         })
     }
 
+    /// A flexible beam's geometry: its modes from its structural parameters, their
+    /// coordinates from the solution; `None` when a parameter is not recorded.
+    fn beam(&mut self, sys: &System) -> Option<Geometry> {
+        let count = |name| scalar(sys, name).map(|n| n as usize);
+        let counts = [count("n_lengthening")?, count("n_bending_xy")?, count("n_bending_xz")?];
+        let boundary = BeamBoundary::from_numbers(sys.structural_value("boundary")?)?;
+        let section = CrossSection::from_numbers(sys.structural_value("cross_section")?)?;
+        let modes = mode_shapes(scalar(sys, "l")?, boundary, counts);
+        let q = (1..=modes.len())
+            .map(|i| self.signal(&sys.path, join(&sys.path, &format!("q.x[{i}]"))))
+            .collect();
+        let (width, height) = section.extents();
+        Some(Geometry::Beam {
+            a: self.pos(sys, "frame_a"),
+            rot: self.rot(sys, "frame_a"),
+            modes,
+            q,
+            width,
+            height,
+        })
+    }
+
     /// Adds the part `sys` is drawn as; `false` when its type is not drawn itself (its
     /// sub-components may be).
     fn collect(&mut self, sys: &System, axes_length: f64) -> bool {
-        let kind = sys.type_name.strip_prefix("MultiBody.").unwrap_or("");
+        let kind = sys
+            .type_name
+            .strip_prefix("MultiBody.")
+            .unwrap_or(&sys.type_name);
         let color = |default| param::<3>(sys, "color").unwrap_or(default);
         let radius = |default| scalar(sys, "radius").unwrap_or(default);
         let geometry = match kind {
@@ -229,6 +255,9 @@ impl Scene {
                     let (a, b) = (self.pos(sys, "frame_a"), self.pos(sys, "frame_b"));
                     (Geometry::Coil { a, b, radius }, color(SPRING_COLOR))
                 })
+            }
+            "FlexibleBodies.Beam" => {
+                self.beam(sys).map(|g| (g, color(BODY_COLOR)))
             }
             "World" => (axes_length > 0.0).then_some((
                 Geometry::Axes {
