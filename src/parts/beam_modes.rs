@@ -31,8 +31,8 @@ impl BeamBoundary {
     /// The boundary recorded as `numbers` ([`StructuralValue`]).
     pub fn from_numbers(numbers: &[f64]) -> Option<BeamBoundary> {
         match numbers {
-            [x] if *x == 0.0 => Some(BeamBoundary::ClampedFree),
-            [x] if *x == 1.0 => Some(BeamBoundary::SupportedSupported),
+            [0.0] => Some(BeamBoundary::ClampedFree),
+            [1.0] => Some(BeamBoundary::SupportedSupported),
             _ => None,
         }
     }
@@ -101,9 +101,9 @@ impl CrossSection {
     /// The section recorded as `numbers` ([`StructuralValue`]).
     pub fn from_numbers(numbers: &[f64]) -> Option<CrossSection> {
         match *numbers {
-            [t, width, height] if t == 0.0 => Some(CrossSection::Rectangle { width, height }),
-            [t, diameter] if t == 1.0 => Some(CrossSection::Circle { diameter }),
-            [t, width, height, t_bar, t_flange] if t == 2.0 => Some(CrossSection::IBeam {
+            [0.0, width, height] => Some(CrossSection::Rectangle { width, height }),
+            [1.0, diameter] => Some(CrossSection::Circle { diameter }),
+            [2.0, width, height, t_bar, t_flange] => Some(CrossSection::IBeam {
                 width,
                 height,
                 t_bar,
@@ -116,9 +116,8 @@ impl CrossSection {
     /// Extents along y and z \[m\].
     pub fn extents(&self) -> (f64, f64) {
         match *self {
-            CrossSection::Rectangle { width, height } | CrossSection::IBeam { width, height, .. } => {
-                (width, height)
-            }
+            CrossSection::Rectangle { width, height }
+            | CrossSection::IBeam { width, height, .. } => (width, height),
             CrossSection::Circle { diameter } => (diameter, diameter),
         }
     }
@@ -157,6 +156,27 @@ pub fn section_properties(s: CrossSection) -> (f64, f64, f64) {
     }
 }
 
+/// Saint-Venant's torsion constant `J_t` of a cross-section \[m4\]: the polar moment
+/// of a circle, `a b^3 (1/3 - 0.21 (b/a) (1 - (b/a)^4 / 12))` of an `a` by `b`
+/// rectangle (`a >= b`; Roark), the thin-walled open section's `sum s t^3 / 3` of an
+/// I-profile.
+pub fn torsion_constant(s: CrossSection) -> f64 {
+    match s {
+        CrossSection::Circle { diameter } => std::f64::consts::PI * diameter.powi(4) / 32.0,
+        CrossSection::Rectangle { width, height } => {
+            let (a, b) = (width.max(height), width.min(height));
+            let r = b / a;
+            a * b.powi(3) * (1.0 / 3.0 - 0.21 * r * (1.0 - r.powi(4) / 12.0))
+        }
+        CrossSection::IBeam {
+            width,
+            height,
+            t_bar,
+            t_flange,
+        } => (2.0 * width * t_flange.powi(3) + (height - 2.0 * t_flange) * t_bar.powi(3)) / 3.0,
+    }
+}
+
 /// The family of a mode.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeKind {
@@ -166,6 +186,8 @@ pub enum ModeKind {
     BendingXy,
     /// Displacement along z, bending about y.
     BendingXz,
+    /// Twist of the sections about x (no displacement; Saint-Venant torsion).
+    Torsion,
 }
 
 /// `n`-th root (from 1) of `cos(b) cosh(b) = -1`: the clamped-free eigenvalues `beta_n
@@ -202,12 +224,14 @@ pub struct Shape {
 }
 
 impl Shape {
-    /// The wavenumber: `beta_n` of bending, `k_n` of lengthening \[1/m\].
+    /// The wavenumber: `beta_n` of bending, `k_n` of lengthening and torsion \[1/m\].
+    /// Torsion modes are clamped-free with either boundary (the sections at `frame_a`
+    /// turn with it about x).
     pub fn wavenumber(&self) -> f64 {
         let pi = std::f64::consts::PI;
         let n = self.n as f64;
         match (self.kind, self.boundary) {
-            (ModeKind::Lengthening, BeamBoundary::ClampedFree) => {
+            (ModeKind::Lengthening, BeamBoundary::ClampedFree) | (ModeKind::Torsion, _) => {
                 (2.0 * n - 1.0) * pi / (2.0 * self.l)
             }
             (ModeKind::Lengthening, BeamBoundary::SupportedSupported) => n * pi / self.l,
@@ -241,6 +265,7 @@ impl Shape {
                 [v, d1, d2]
             }
             (ModeKind::Lengthening, BeamBoundary::ClampedFree)
+            | (ModeKind::Torsion, _)
             | (_, BeamBoundary::SupportedSupported) => {
                 let (s, c) = (b * x).sin_cos();
                 [s, b * c, -b * b * s]
@@ -249,14 +274,15 @@ impl Shape {
     }
 }
 
-/// The shapes of a beam of length `l` with `counts` lengthening, xy-bending and
-/// xz-bending modes, each with its direction of displacement in the beam's frame, in
-/// the order of the beam's modal coordinates.
-pub fn mode_shapes(l: f64, boundary: BeamBoundary, counts: [usize; 3]) -> Vec<(Shape, [f64; 3])> {
+/// The shapes of a beam of length `l` with `counts` lengthening, xy-bending,
+/// xz-bending and torsion modes, each with its direction of displacement in the beam's
+/// frame (zero for torsion), in the order of the beam's modal coordinates.
+pub fn mode_shapes(l: f64, boundary: BeamBoundary, counts: [usize; 4]) -> Vec<(Shape, [f64; 3])> {
     let families = [
         (ModeKind::Lengthening, [1.0, 0.0, 0.0]),
         (ModeKind::BendingXy, [0.0, 1.0, 0.0]),
         (ModeKind::BendingXz, [0.0, 0.0, 1.0]),
+        (ModeKind::Torsion, [0.0, 0.0, 0.0]),
     ];
     families
         .into_iter()
@@ -312,7 +338,7 @@ pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
             / 3.0;
         let [v, d1, d2] = shape.eval(x);
         mm += w * v * v;
-        kk += w * if shape.kind == ModeKind::Lengthening {
+        kk += w * if matches!(shape.kind, ModeKind::Lengthening | ModeKind::Torsion) {
             d1 * d1
         } else {
             d2 * d2
@@ -330,6 +356,61 @@ pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
         tip,
         tip_slope,
     }
+}
+
+/// Integrals over pairs of modes of a beam of density `rho` and area `a`, for the
+/// second-order terms of a floating frame of reference: each an `n x n` matrix in the
+/// order of the shapes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairIntegrals {
+    /// `rho A int phi_i phi_j` \[kg\]: the modes' cross masses.
+    pub mass: Vec<Vec<f64>>,
+    /// `int phi_i' phi_j'` \[1/m\]: geometric stiffness per unit axial force.
+    pub slope: Vec<Vec<f64>>,
+    /// `rho A int (l - x) phi_i' phi_j'` \[kg/m\]: geometric stiffness per unit axial
+    /// acceleration.
+    pub slope_acceleration: Vec<Vec<f64>>,
+    /// `rho A int (l^2 - x^2) / 2 phi_i' phi_j'` \[kg\]: geometric stiffness per unit
+    /// squared angular velocity about the beam's transverse axes.
+    pub slope_spin: Vec<Vec<f64>>,
+}
+
+/// The [`PairIntegrals`] of `shapes` (all of one length) by Simpson's rule on 4 000
+/// intervals.
+pub fn pair_integrals(shapes: &[Shape], rho: f64, a: f64) -> PairIntegrals {
+    const N: usize = 4000;
+    let n = shapes.len();
+    let l = shapes.first().map_or(0.0, |s| s.l);
+    let h = l / N as f64;
+    let zero = || vec![vec![0.0; n]; n];
+    let mut out = PairIntegrals {
+        mass: zero(),
+        slope: zero(),
+        slope_acceleration: zero(),
+        slope_spin: zero(),
+    };
+    for k in 0..=N {
+        let x = k as f64 * h;
+        let w = if k == 0 || k == N {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        } * h
+            / 3.0;
+        let values: Vec<[f64; 3]> = shapes.iter().map(|s| s.eval(x)).collect();
+        for (i, vi) in values.iter().enumerate() {
+            for (j, vj) in values.iter().enumerate() {
+                let slopes = w * vi[1] * vj[1];
+                out.mass[i][j] += rho * a * w * vi[0] * vj[0];
+                out.slope[i][j] += slopes;
+                out.slope_acceleration[i][j] += rho * a * (l - x) * slopes;
+                out.slope_spin[i][j] += rho * a * 0.5 * (l * l - x * x) * slopes;
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -354,6 +435,48 @@ mod tests {
             assert_eq!(BeamBoundary::from_numbers(&numbers), Some(b));
         }
         assert_eq!(CrossSection::from_numbers(&[3.0, 1.0]), None);
+    }
+
+    #[test]
+    fn pair_integrals_give_orthogonal_modes_and_the_southwell_coefficients() {
+        // Clamped-free bending: the modes are orthogonal, and the centrifugal stiffening
+        // of a beam spinning about its root, int (l^2 - x^2)/2 phi'^2 / int phi^2, is
+        // Southwell's coefficient: 1.1933 and 6.4782 for the first two modes (Wright et
+        // al. 1982, the limit of small speed).
+        let l = 1.58;
+        let shapes = mode_shapes(l, BeamBoundary::ClampedFree, [0, 3, 0, 0]);
+        let shapes: Vec<Shape> = shapes.into_iter().map(|(s, _)| s).collect();
+        let p = pair_integrals(&shapes, 2.0, 3.0);
+        for i in 0..3 {
+            for j in 0..3 {
+                if i != j {
+                    assert!(p.mass[i][j].abs() < 1e-9 * p.mass[i][i], "{i} {j}");
+                }
+            }
+        }
+        assert!((p.mass[0][0] - 6.0 * l).abs() < 1e-6);
+        for (i, southwell) in [(0, 1.1933), (1, 6.4782)] {
+            let c = p.slope_spin[i][i] / p.mass[i][i];
+            assert!((c - southwell).abs() < 1e-4, "{i}: {c}");
+        }
+    }
+
+    #[test]
+    fn torsion_constants_are_the_handbook_ones() {
+        // Roark: a square's J_t = 0.1406 a^4, a thin strip's b t^3 / 3, a circle's
+        // polar moment.
+        let square = torsion_constant(CrossSection::Rectangle {
+            width: 0.1,
+            height: 0.1,
+        });
+        assert!((square / 1e-4 - 0.1406).abs() < 3e-4, "{square}");
+        let strip = torsion_constant(CrossSection::Rectangle {
+            width: 0.001,
+            height: 1.0,
+        });
+        assert!((strip / (1e-9 / 3.0) - 1.0).abs() < 1e-3, "{strip}");
+        let circle = torsion_constant(CrossSection::Circle { diameter: 0.2 });
+        assert!((circle - std::f64::consts::PI * 0.1f64.powi(4) / 2.0).abs() < 1e-15);
     }
 
     #[test]

@@ -14,7 +14,7 @@ mod start_orientation;
 
 pub use beam_modes::{
     BeamBoundary, CrossSection, ModeData, ModeKind, Shape, clamped_free_root, mode_data,
-    mode_shapes, section_properties,
+    mode_shapes, section_properties, torsion_constant,
 };
 pub use body::*;
 pub use drive_train::*;

@@ -93,9 +93,12 @@ fn beam_points(
     (0..=BEAM_POINTS)
         .map(|k| {
             let x = l * k as f64 / BEAM_POINTS as f64;
-            let local = modes.iter().zip(q).fold([x, 0.0, 0.0], |p, ((shape, dir), &i)| {
-                axpy(p, shape.eval(x)[0] * value(i), *dir)
-            });
+            let local = modes
+                .iter()
+                .zip(q)
+                .fold([x, 0.0, 0.0], |p, ((shape, dir), &i)| {
+                    axpy(p, shape.eval(x)[0] * value(i), *dir)
+                });
             add(a, rot.resolve1(local))
         })
         .collect()

@@ -102,7 +102,12 @@ impl Scene {
     /// coordinates from the solution; `None` when a parameter is not recorded.
     fn beam(&mut self, sys: &System) -> Option<Geometry> {
         let count = |name| scalar(sys, name).map(|n| n as usize);
-        let counts = [count("n_lengthening")?, count("n_bending_xy")?, count("n_bending_xz")?];
+        let counts = [
+            count("n_lengthening")?,
+            count("n_bending_xy")?,
+            count("n_bending_xz")?,
+            count("n_torsion")?,
+        ];
         let boundary = BeamBoundary::from_numbers(sys.structural_value("boundary")?)?;
         let section = CrossSection::from_numbers(sys.structural_value("cross_section")?)?;
         let modes = mode_shapes(scalar(sys, "l")?, boundary, counts);
@@ -256,9 +261,7 @@ impl Scene {
                     (Geometry::Coil { a, b, radius }, color(SPRING_COLOR))
                 })
             }
-            "FlexibleBodies.Beam" => {
-                self.beam(sys).map(|g| (g, color(BODY_COLOR)))
-            }
+            "FlexibleBodies.Beam" => self.beam(sys).map(|g| (g, color(BODY_COLOR))),
             "World" => (axes_length > 0.0).then_some((
                 Geometry::Axes {
                     length: axes_length,
