@@ -321,21 +321,26 @@ pub struct ModeData {
     pub tip_slope: f64,
 }
 
-/// The modal data of `shape` by Simpson's rule on 4 000 intervals.
-pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
+/// The points and weights of Simpson's rule on 4 000 intervals of `[0, l]`.
+fn simpson(l: f64) -> impl Iterator<Item = (f64, f64)> {
     const N: usize = 4000;
-    let h = shape.l / N as f64;
-    let (mut mm, mut kk, mut f0, mut f1) = (0.0, 0.0, 0.0, 0.0);
-    for i in 0..=N {
-        let x = i as f64 * h;
-        let w = if i == 0 || i == N {
+    let h = l / N as f64;
+    (0..=N).map(move |i| {
+        let weight = if i == 0 || i == N {
             1.0
         } else if i % 2 == 1 {
             4.0
         } else {
             2.0
-        } * h
-            / 3.0;
+        };
+        (i as f64 * h, weight * h / 3.0)
+    })
+}
+
+/// The modal data of `shape` by Simpson's rule on 4 000 intervals.
+pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
+    let (mut mm, mut kk, mut f0, mut f1) = (0.0, 0.0, 0.0, 0.0);
+    for (x, w) in simpson(shape.l) {
         let [v, d1, d2] = shape.eval(x);
         mm += w * v * v;
         kk += w * if matches!(shape.kind, ModeKind::Lengthening | ModeKind::Torsion) {
@@ -378,10 +383,8 @@ pub struct PairIntegrals {
 /// The [`PairIntegrals`] of `shapes` (all of one length) by Simpson's rule on 4 000
 /// intervals.
 pub fn pair_integrals(shapes: &[Shape], rho: f64, a: f64) -> PairIntegrals {
-    const N: usize = 4000;
     let n = shapes.len();
     let l = shapes.first().map_or(0.0, |s| s.l);
-    let h = l / N as f64;
     let zero = || vec![vec![0.0; n]; n];
     let mut out = PairIntegrals {
         mass: zero(),
@@ -389,16 +392,7 @@ pub fn pair_integrals(shapes: &[Shape], rho: f64, a: f64) -> PairIntegrals {
         slope_acceleration: zero(),
         slope_spin: zero(),
     };
-    for k in 0..=N {
-        let x = k as f64 * h;
-        let w = if k == 0 || k == N {
-            1.0
-        } else if k % 2 == 1 {
-            4.0
-        } else {
-            2.0
-        } * h
-            / 3.0;
+    for (x, w) in simpson(l) {
         let values: Vec<[f64; 3]> = shapes.iter().map(|s| s.eval(x)).collect();
         for (i, vi) in values.iter().enumerate() {
             for (j, vj) in values.iter().enumerate() {
