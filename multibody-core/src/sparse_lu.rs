@@ -391,7 +391,9 @@ impl SparseLu {
             let mut below = 0.0f64;
             for (&row, l) in l_row[a..b].iter().zip(&mut l_val[a..b]) {
                 let w = work[row as usize];
-                below = below.max(w.abs());
+                // Entries are finite (checked on entry): a plain comparison.
+                let m = w.abs();
+                below = if m > below { m } else { below };
                 *l = w * inv;
                 work[row as usize] = 0.0;
             }

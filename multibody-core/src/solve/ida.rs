@@ -171,13 +171,14 @@ impl IdaStats {
     }
 }
 
-/// Failure of an IDA integration.
+/// Failure of an integration (IDA, CVODE or ARKODE; the flag names which).
 #[derive(Debug, Clone, thiserror::Error)]
-#[error("IDA failed at t = {t}: {flag} ({message})")]
+#[error("the integrator failed at t = {t}: {flag} ({message})")]
 pub struct IdaError {
     /// Last time reached by the integrator (t0 for setup errors).
     pub t: f64,
-    /// Name of the IDA return flag (e.g. `IDA_CONV_FAIL`), or `INVALID_INPUT`
+    /// Name of the SUNDIALS return flag (e.g. `IDA_CONV_FAIL`, `CV_TOO_MUCH_WORK`,
+    /// `ARK_ERR_FAILURE`), or `INVALID_INPUT`
     /// / `SETUP_FAILED` for errors detected before integrating.
     pub flag: String,
     /// Explanation in words.
