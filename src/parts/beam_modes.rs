@@ -302,7 +302,9 @@ pub fn mode_shapes(l: f64, boundary: BeamBoundary, counts: [usize; 4]) -> Vec<(S
 }
 
 /// The modal data of one mode for a beam of density `rho`, area `a` and stiffness
-/// `stiffness` (`E A` for lengthening, `E I` for bending).
+/// `stiffness` (`E A` for lengthening, `E I` for bending). For torsion `a` is the polar
+/// moment `I_p` and `stiffness` is `G J_t`: the mass is then in kg m2, `first` in kg m
+/// (the twist's coupling to the rotation about x), and the stiffness in N m.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModeData {
     /// Family.
@@ -337,7 +339,8 @@ fn simpson(l: f64) -> impl Iterator<Item = (f64, f64)> {
     })
 }
 
-/// The modal data of `shape` by Simpson's rule on 4 000 intervals.
+/// The modal data of `shape` by Simpson's rule on 4 000 intervals (`a` per unit length:
+/// the area, or the polar moment for torsion; see [`ModeData`]).
 pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
     let (mut mm, mut kk, mut f0, mut f1) = (0.0, 0.0, 0.0, 0.0);
     for (x, w) in simpson(shape.l) {
@@ -381,7 +384,8 @@ pub struct PairIntegrals {
 }
 
 /// The [`PairIntegrals`] of `shapes` (all of one length) by Simpson's rule on 4 000
-/// intervals.
+/// intervals. Rows and columns of torsion modes are computed alike but mean nothing
+/// (the twist displaces no point of the axis).
 pub fn pair_integrals(shapes: &[Shape], rho: f64, a: f64) -> PairIntegrals {
     let n = shapes.len();
     let l = shapes.first().map_or(0.0, |s| s.l);

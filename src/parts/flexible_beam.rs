@@ -78,14 +78,17 @@ component! {
     /// inertia of this displacement field (linear in the modal coordinates): the rigid
     /// motion with the deformation's first moment and its change of the inertia tensor,
     /// the inertial coupling of the modes to the rigid motion (translational,
-    /// rotational, centrifugal) and to each other (centrifugal softening, Coriolis); so
-    /// an undamped beam keeps its energy. With `geometric_stiffening`, the bending modes
+    /// rotational, centrifugal) and to each other (centrifugal softening, Coriolis), and
+    /// the end's force and torque on the modes through the exact axes of the rotations
+    /// that turn `frame_b`. With `geometric_stiffening`, the bending modes
     /// are stiffened by the axial force from the inertial loads (centrifugal, axial
     /// acceleration) and the end's axial force (the second-order strain of a rotating
     /// beam; without it a fast spinning beam is far too soft). The twisted sections'
     /// rotary inertia couples torsion to the rotation about x and, for unequal second
     /// moments, to the rotation about y and z. Not modelled: the sections' rotation with
-    /// the bending slopes (Rayleigh beam), warping, the shear centre's offset.
+    /// the bending slopes (Rayleigh beam), warping, the shear centre's offset. Without
+    /// geometric stiffening and damping the beam keeps its energy exactly, with whatever
+    /// is attached at its ends (`kinetic_energy`, `elastic_energy`).
     #[type_name = "FlexibleBodies.Beam"]
     pub struct FlexibleBeam {
         /// Length \[m\], default 1.58 (the seed's beam).
@@ -171,7 +174,6 @@ component! {
             let s = Vec3::constant([m * l / 2.0, 0.0, 0.0]) + sum(&|i, d, dir| dir.scale(d.first * q.x(i)));
             let sd = sum(&|i, d, dir| dir.scale(d.first * qd.x(i)));
             let sdd = sum(&|i, d, dir| dir.scale(d.first * der(qd.x(i))));
-            let coupling_r = sum(&|i, d, dir| ex.cross(dir).scale(d.first_x * der(qd.x(i))));
             let u = sum(&|i, d, dir| dir.scale(d.tip * q.x(i)));
             // Slopes at the end: about z from the xy modes, about y (negative) from xz.
             let slope = |kind: ModeKind, sign: f64, x: &dyn Fn(usize) -> Expr| -> Expr {
@@ -211,9 +213,13 @@ component! {
             } else {
                 frame_a.R = absolute_rotation(&frame_b.R, &inverse_rotation(&r_rel));
             }
-            // The end's force and torque, resolved in frame_a.
+            // The end's force and torque, resolved in frame_a, and the axes about which the
+            // slopes turn frame_b (y after the twist, z after the twist and the slope
+            // about y): the end torque's work on the modes.
             let f_b = resolve1(&r_rel, frame_b.f);
             let t_b = resolve1(&r_rel, frame_b.t);
+            let axis_y = Vec3::new(Expr::constant(0.0), cos(twist), sin(twist));
+            let axis_z = Vec3::new(sin(slope_y), -sin(twist) * cos(slope_y), cos(twist) * cos(slope_y));
             // The modes' cross masses and geometric stiffnesses; per mode i the first
             // moment of the deformation and its rates weighted by the shape,
             // int phi_i u dm (zero cross masses of modes along one direction left out).
@@ -249,8 +255,8 @@ component! {
             let coriolis = over_modes(&|i, d| ex.cross(w_a.cross(dirs[i])).scale(d.first_x * qd.x(i)) + dirs[i].cross(w_a.cross(u_qd[i])).scale(q.x(i)));
             // Newton and Euler of the beam about frame_a.
             frame_a.f + f_b = acc.scale(m) + z_a.cross(s) + w_a.cross(w_a.cross(s)) + w_a.cross(sd).scale(2.0) + sdd;
-            let twisting = ex.scale(over_torsion(&|i, d| d.first * der(qd.x(i)))) + w_a.cross(ex.scale(twist_momentum)) + twist_inertia(&|i| qd.x(i), w_a);
-            frame_a.t + t_b + r_b.cross(f_b) = s.cross(acc) + inertia(z_a) + w_a.cross(inertia(w_a)) + coriolis.scale(2.0) + relative + twisting;
+            let twist_moment = ex.scale(over_torsion(&|i, d| d.first * der(qd.x(i)))) + w_a.cross(ex.scale(twist_momentum)) + twist_inertia(&|i| qd.x(i), w_a);
+            frame_a.t + t_b + r_b.cross(f_b) = s.cross(acc) + inertia(z_a) + w_a.cross(inertia(w_a)) + coriolis.scale(2.0) + relative + twist_moment;
             // Energies.
             let v_a = resolve2(&frame_a.R, v_0);
             kinetic_energy = 0.5 * m * v_a.dot(v_a) + v_a.dot(w_a.cross(s)) + v_a.dot(sd) + 0.5 * w_a.dot(inertia(w_a)) + w_a.dot(relative_momentum) + w_a[0] * twist_momentum
@@ -277,20 +283,20 @@ component! {
                 let centrifugal = d.first_x * (dir_v.dot(w_a) * w_a[0] - dir[0] * w_a.dot(w_a));
                 let modal = dir_v.dot(z_a.cross(u_q[i]) + w_a.cross(w_a.cross(u_q[i])) + w_a.cross(u_qd[i]).scale(2.0));
                 let end_torque = match d.kind {
-                    ModeKind::BendingXy => d.tip_slope * t_b[2],
-                    ModeKind::BendingXz => -d.tip_slope * t_b[1],
+                    ModeKind::BendingXy => d.tip_slope * t_b.dot(axis_z),
+                    ModeKind::BendingXz => -d.tip_slope * t_b.dot(axis_y),
                     ModeKind::Torsion => d.tip * t_b[0],
                     ModeKind::Lengthening => Expr::constant(0.0),
                 };
                 // The twisted sections: the rotation about x accelerates the mode, the
                 // rotation about y and z twists unequal sections (rho (I_y - I_z) w_y w_z).
-                let twisting = if d.kind == ModeKind::Torsion {
+                let twist_load = if d.kind == ModeKind::Torsion {
                     d.first * z_a[0] - unequal * d.first * w_a[1] * w_a[2]
                 } else {
                     Expr::constant(0.0)
                 };
                 d.mass * der(qd.x(i)) + 2.0 * damping * omega * d.mass * qd.x(i) + d.stiffness * q.x(i) + geometric(i)
-                    = -(acc.scale(d.first).dot(dir_v) + rotational.dot(z_a) + centrifugal + modal + twisting)
+                    = -(acc.scale(d.first).dot(dir_v) + rotational.dot(z_a) + centrifugal + modal + twist_load)
                         + d.tip * dir_v.dot(f_b) + end_torque;
             }
         }

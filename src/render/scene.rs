@@ -128,10 +128,10 @@ impl Scene {
     /// Adds the part `sys` is drawn as; `false` when its type is not drawn itself (its
     /// sub-components may be).
     fn collect(&mut self, sys: &System, axes_length: f64) -> bool {
-        let kind = sys
-            .type_name
-            .strip_prefix("MultiBody.")
-            .unwrap_or(&sys.type_name);
+        let kind = match sys.type_name.as_str() {
+            "FlexibleBodies.Beam" => "FlexibleBodies.Beam",
+            name => name.strip_prefix("MultiBody.").unwrap_or(""),
+        };
         let color = |default| param::<3>(sys, "color").unwrap_or(default);
         let radius = |default| scalar(sys, "radius").unwrap_or(default);
         let geometry = match kind {
