@@ -9,14 +9,16 @@
 //! solves the forward kinematics).
 //!
 //! `cargo run --release --example hexapod` prints the translation statistics and the
-//! actuator forces of both scenarios, writes `hexapod.png` and `hexapod.gif`.
+//! actuator forces of both scenarios, writes `hexapod.png` and `hexapod.gif`, and
+//! prints the statistics of the trajectory scenario with force-controlled legs
+//! (`ControlledLeg`: a PID per actuator; 18 states, as the seed's translation log).
 
 use multibody::blocks::{RealInput, RealOutput};
 use multibody::interfaces::Frame;
 use multibody::joints::{Prismatic, Spherical, Universal};
 use multibody::parts::{Body, FixedTranslation, OrientationStates};
 use multibody::prelude::*;
-use multibody::translational::Position;
+use multibody::translational::{Force, Position};
 use multibody::world::World;
 
 /// Side of the base triangle \[m\] (seed `Basis.Lb`).
@@ -161,9 +163,71 @@ component! {
     }
 }
 
+component! {
+    /// A leg whose actuator is force-controlled to the length `length`: the force
+    /// `held + kp e + kd e'` on the length error `e = length - actuator.s`, with
+    /// `held' = ki e` (PID). Its states are the actuator's length and speed and the
+    /// controller's integral: six such legs give the seed's 18 states.
+    pub struct ControlledLeg {
+        /// Proportional gain \[N/m\], default 1e6.
+        parameter kp: f64 = 1.0e6;
+        /// Integral gain \[N/(m s)\], default 2e7.
+        parameter ki: f64 = 2.0e7;
+        /// Derivative gain \[N s/m\], default 2e4.
+        parameter kd: f64 = 2.0e4;
+        /// The force the integral holds at the start \[N\], default 0.
+        structural force_start: f64 = 0.0;
+        /// The actuator's length at the start \[m\], default 1.
+        structural s_start: f64 = 1.0;
+        /// The actuator's speed at the start \[m/s\], default 0.
+        structural v_start: f64 = 0.0;
+        /// At the base.
+        connector frame_a: Frame;
+        /// At the platform.
+        connector frame_b: Frame;
+        /// The length to drive the leg to \[m\].
+        connector length: RealInput;
+        /// The universal joint at the base (its angles follow from the lengths: not
+        /// states).
+        component universal: Universal = Universal { n_a: [1.0, 0.0, 0.0], n_b: [0.0, 0.0, 1.0], state_priority: StateSelect::Avoid.priority(), ..Universal::default() };
+        /// The actuator.
+        component actuator: Prismatic = Prismatic { n: [0.0, 1.0, 0.0], axisflange: true, s_start: self.s_start, v_start: self.v_start, ..Prismatic::default() };
+        /// The spherical joint at the platform.
+        component ball: Spherical = Spherical::default();
+        /// The actuator's force.
+        component force: Force = Force::default();
+        /// The controller's integral term \[N\].
+        variable held(start = force_start, fixed = true): Real;
+        equation {
+            connect(frame_a, universal.frame_a);
+            connect(universal.frame_b, actuator.frame_a);
+            connect(actuator.frame_b, ball.frame_a);
+            connect(ball.frame_b, frame_b);
+            connect(force.flange, actuator.axis);
+            der(held) = ki * (length - actuator.s);
+            force.f = held + kp * (length - actuator.s) + kd * (der(length) - actuator.v);
+        }
+    }
+}
+
+/// How the actuators are driven.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Drive {
+    /// Exactly to the lengths (`Leg`): no states.
+    Exact,
+    /// Force-controlled to the lengths (`ControlledLeg`), the integrals starting at the
+    /// static balance's forces.
+    Controlled,
+}
+
 /// The hexapod with the platform moving as `motion` (`Motion::REST`: the static
-/// scenario).
+/// scenario), its actuators driven exactly.
 pub fn hexapod(motion: Motion) -> System {
+    hexapod_driven(motion, Drive::Exact)
+}
+
+/// The hexapod with the platform moving as `motion`, its actuators driven as `drive`.
+pub fn hexapod_driven(motion: Motion, drive: Drive) -> System {
     let mut m = System::new("hexapod");
     let world = m.add_typed("world", &World::default());
     let platform = m.add_typed(
@@ -208,8 +272,31 @@ pub fn hexapod(motion: Motion) -> System {
     for c in &corners {
         m.connect_handles(&platform.frame_a, &c.frame_a);
     }
+    let held = static_leg_forces();
     for (i, &(b, p)) in LEGS.iter().enumerate() {
-        let leg = m.add_typed(&format!("leg{}", i + 1), &Leg::default());
+        let name = format!("leg{}", i + 1);
+        let (frame_a, frame_b, input) = match drive {
+            Drive::Exact => {
+                let leg = m.add_typed(&name, &Leg::default());
+                (leg.frame_a, leg.frame_b, leg.length)
+            }
+            Drive::Controlled => {
+                // The speed at the start by a central difference of the inverse
+                // kinematics.
+                let dt = 1e-6;
+                let speed = (motion.leg_length(i, dt) - motion.leg_length(i, -dt)) / (2.0 * dt);
+                let leg = m.add_typed(
+                    &name,
+                    &ControlledLeg {
+                        force_start: held[i],
+                        s_start: motion.leg_length(i, 0.0),
+                        v_start: speed,
+                        ..ControlledLeg::default()
+                    },
+                );
+                (leg.frame_a, leg.frame_b, leg.length)
+            }
+        };
         let length = m.add_typed(
             &format!("length{}", i + 1),
             &LegLength {
@@ -221,9 +308,9 @@ pub fn hexapod(motion: Motion) -> System {
                 f: motion.f,
             },
         );
-        m.connect_handles(&base[b].frame_b, &leg.frame_a);
-        m.connect_handles(&leg.frame_b, &corners[p].frame_b);
-        m.connect_handles(&length.y, &leg.length);
+        m.connect_handles(&base[b].frame_b, &frame_a);
+        m.connect_handles(&frame_b, &corners[p].frame_b);
+        m.connect_handles(&length.y, &input);
     }
     m
 }
@@ -243,11 +330,20 @@ pub fn guesses(motion: Motion) -> Vec<(String, f64)> {
         let phi_a = d[2].atan2(d[1]);
         g.push((format!("leg{}.universal.phi_a", i + 1), phi_a));
         g.push((format!("leg{}.universal.phi_b", i + 1), phi_b));
+        // The same angles by the names the controlled legs' tearing uses.
+        g.push((format!("leg{}.universal.revolute_a.axis.phi", i + 1), phi_a));
+        g.push((format!("leg{}.universal.revolute_b.axis.phi", i + 1), phi_b));
         g.push((format!("leg{}.actuator.s", i + 1), l));
     }
     let (c, _) = motion.pose(0.0);
     for (j, v) in c.iter().enumerate() {
         g.push((format!("platform.r_0[{}]", j + 1), *v));
+        g.push((format!("platform.frame_a.r_0[{}]", j + 1), *v));
+    }
+    for k in 0..3 {
+        for (j, v) in motion.corner(k, 0.0).iter().enumerate() {
+            g.push((format!("corner{}.frame_b.r_0[{}]", k + 1, j + 1), *v));
+        }
     }
     g
 }
@@ -350,5 +446,8 @@ fn main() -> Result<(), multibody::Error> {
     };
     render(&model, &sol, "hexapod.gif", &options)?;
     println!("wrote hexapod.gif");
+    // The legs force-controlled to the same lengths: 18 states, as the seed's.
+    let ssys = structural_simplify(&hexapod_driven(motion, Drive::Controlled))?;
+    println!("force-controlled legs:\n{}", ssys.statistics());
     Ok(())
 }
