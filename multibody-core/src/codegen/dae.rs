@@ -84,6 +84,9 @@ pub struct CompiledDae {
     /// The extended Jacobian of [`Self::residual`] when it is much sparser than
     /// [`Self::jacobian`], built on first use (see [`Self::extended`]).
     extended: std::sync::OnceLock<Option<ExtendedJacobian>>,
+    /// Whether [`Self::residual`] is an explicit ODE, found on first use (see
+    /// [`Self::is_explicit_ode`]).
+    explicit: std::sync::OnceLock<bool>,
     /// Every observable variable, one output each, named by [`Self::observed_names`]
     /// (shared by every problem and solution made from this system).
     pub observed: Arc<Tape>,
@@ -192,6 +195,7 @@ pub(crate) fn compile_dae(
         // analyses the specialized residual instead, never this one.
         jacobian: std::sync::OnceLock::new(),
         extended: std::sync::OnceLock::new(),
+        explicit: std::sync::OnceLock::new(),
         observed,
         observed_names: spec.observed_names.clone(),
     })
@@ -219,6 +223,7 @@ impl CompiledDae {
             residual: self.residual.specialize_partly(params),
             jacobian: std::sync::OnceLock::new(),
             extended: std::sync::OnceLock::new(),
+            explicit: std::sync::OnceLock::new(),
             observed: self.observed.clone(),
             observed_names: self.observed_names.clone(),
         }
@@ -227,9 +232,12 @@ impl CompiledDae {
     /// Whether the residual is `u' - g(t, u)`: output `k` is `u'_k` minus a value
     /// that depends on no derivative input (or `u'_k` alone). Such a system is the
     /// explicit ODE `u' = g(t, u)`, with `g = -F(t, u, 0)` and `dg/du = -dF/du`.
+    /// Found once per compiled system.
     pub fn is_explicit_ode(&self) -> bool {
-        let (n, up) = (self.layout.n, self.layout.up(0));
-        self.residual.is_explicit_in(n, up)
+        *self.explicit.get_or_init(|| {
+            let (n, up) = (self.layout.n, self.layout.up(0));
+            self.residual.is_explicit_in(n, up)
+        })
     }
 
     /// Whether the plain and the extended Jacobian have been analysed yet (each is on
