@@ -15,7 +15,7 @@ use super::error::SolveError;
 use super::ida;
 use super::init::InitResult;
 use super::options::SolverOptions;
-use super::problem::{CompiledFunctions, ida_settings, specialized_for, unknowns_of};
+use super::problem::{CompiledFunctions, Workspaces, ida_settings, specialized_for, unknowns_of};
 use super::solution::Event;
 use crate::codegen::dae::CompiledDae;
 
@@ -302,12 +302,24 @@ pub(super) fn settle(
     roots: &[i32],
     options: &SolverOptions,
     (history, specialized): (&mut History, &mut Option<(Vec<f64>, CompiledDae)>),
+    workspaces: &mut Option<Workspaces>,
 ) -> Result<Settled, Error> {
     let cache = specialized_for(sys, params, options, specialized.take());
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
     let t = point.0;
     let before = event_values(sys, params);
-    let result = settle_with(c, sys, tspan, params, point, roots, options, history);
+    let recycled = std::cell::RefCell::new(workspaces.take());
+    let result = settle_with(
+        c,
+        sys,
+        tspan,
+        params,
+        point,
+        roots,
+        options,
+        (history, &recycled),
+    );
+    *workspaces = recycled.into_inner();
     let switch = switched(sys, &before, params);
     // Where the new mode has no consistent solution, say what switched.
     let result = result.map_err(|e| with_switch(e, t, &switch));
@@ -330,7 +342,7 @@ fn settle_with(
     (t, mut y, mut yp): (f64, Vec<f64>, Vec<f64>),
     roots: &[i32],
     options: &SolverOptions,
-    history: &mut History,
+    (history, workspaces): (&mut History, &std::cell::RefCell<Option<Workspaces>>),
 ) -> Result<Settled, Error> {
     let model = &sys.model.events;
     let mut terminated = None;
@@ -379,10 +391,14 @@ fn settle_with(
         // The mixed system at fixed pre values: the continuous unknowns with the
         // discrete values, then the relations and the discrete equations from them,
         // until they agree.
+        // The segments' workspaces serve here too (their sparse LUs keep their orders).
         let consistent = |params: &[f64], y: &[f64], yp: &[f64]| {
             let (settings, extended) = ida_settings(sys, c, options, true);
-            let mut f = CompiledFunctions::new(c, params, extended);
-            ida::consistent_values(&mut f, t, y, yp, &settings, tout1).map_err(|e| {
+            let recycled = workspaces.borrow_mut().take();
+            let mut f = CompiledFunctions::recycling(c, params, extended, recycled);
+            let r = ida::consistent_values(&mut f, t, y, yp, &settings, tout1);
+            *workspaces.borrow_mut() = Some(f.into_workspaces());
+            r.map_err(|e| {
                 Error::from(SolveError {
                     model: sys.model.name.clone(),
                     t: e.t,

@@ -741,6 +741,7 @@ impl<'a> DaeProblem<'a> {
             specialized: None,
             terminated: None,
             stiff: false,
+            workspaces: None,
         };
         let (mut t0, mut u0, mut up0) = (self.tspan.0, self.u0.clone(), self.up0.clone());
         let mut params = self.params.clone();
@@ -961,6 +962,7 @@ impl<'a> DaeProblem<'a> {
             roots,
             options,
             (&mut run.events, &mut run.specialized),
+            &mut run.workspaces,
         )?;
         if let Some(message) = settled.terminated {
             run.point_segment(t, &settled.y, &settled.yp, params, self.sys)?;
@@ -1059,7 +1061,7 @@ impl<'a> DaeProblem<'a> {
             Some(ts) if !ts.is_empty() => OutputMode::Times(ts),
             _ => OutputMode::EveryStep { t_end },
         };
-        let mut f = CompiledFunctions::new(c, params, extended)
+        let mut f = CompiledFunctions::recycling(c, params, extended, run.workspaces.take())
             .with_drivers(self.drivers.clone())
             .with_crossings(sys);
         let first = run.t.len();
@@ -1138,6 +1140,10 @@ impl<'a> DaeProblem<'a> {
                 monitor,
             ),
         };
+        // The crossing functions' relations; the workspaces go to what follows (the
+        // projection, the event, the next segment).
+        let crossing_relations = f.crossing_relations();
+        run.workspaces = Some(f.into_workspaces());
         if let Some(t) = exceeded {
             return Err(SolveError {
                 model: sys.model.name.clone(),
@@ -1233,13 +1239,15 @@ impl<'a> DaeProblem<'a> {
                 last,
             });
         }
+        let roots = relation_roots(
+            &crossing_relations,
+            &integrated.roots,
+            sys.model.events.relations.len(),
+        );
         Ok(match integrated.stopped {
-            Some((t, y, yp)) if !integrated.roots.is_empty() => SegmentEnd::Event {
-                t,
-                y,
-                yp,
-                roots: f.relation_roots(&integrated.roots, sys.model.events.relations.len()),
-            },
+            Some((t, y, yp)) if !integrated.roots.is_empty() => {
+                SegmentEnd::Event { t, y, yp, roots }
+            }
             Some((t, y, yp)) => SegmentEnd::Switch {
                 t,
                 y,
@@ -1249,6 +1257,16 @@ impl<'a> DaeProblem<'a> {
             None => SegmentEnd::Done,
         })
     }
+}
+
+/// The integrator's root information `roots` (one per crossing function, of the
+/// relations `relations`) per relation of the system (`n`; 0 for the time events).
+fn relation_roots(relations: &[usize], roots: &[i32], n: usize) -> Vec<i32> {
+    let mut out = vec![0; n];
+    for (&k, &r) in relations.iter().zip(roots) {
+        out[k] = r;
+    }
+    out
 }
 
 /// Solves the algebraic unknowns of the points `first..` of `run` again from the
@@ -1262,20 +1280,21 @@ fn project(
     first: usize,
 ) {
     let n = u0.len();
-    let mut plain = CompiledFunctions::new(c, params, false).with_drivers(drivers.clone());
-    let Some(mut projection) = super::project::Projection::new(&mut plain, mass, t0, u0, up0)
-    else {
-        return;
-    };
-    for k in first..run.t.len() {
-        let span = k * n..(k + 1) * n;
-        projection.apply(
-            &mut plain,
-            run.t[k],
-            &mut run.u[span.clone()],
-            &run.up[span],
-        );
+    let recycled = run.workspaces.take();
+    let mut plain =
+        CompiledFunctions::recycling(c, params, false, recycled).with_drivers(drivers.clone());
+    if let Some(mut projection) = super::project::Projection::new(&mut plain, mass, t0, u0, up0) {
+        for k in first..run.t.len() {
+            let span = k * n..(k + 1) * n;
+            projection.apply(
+                &mut plain,
+                run.t[k],
+                &mut run.u[span.clone()],
+                &run.up[span],
+            );
+        }
     }
+    run.workspaces = Some(plain.into_workspaces());
 }
 
 /// Why a run of segments stopped early.
@@ -1345,6 +1364,22 @@ struct Run {
     /// Whether `Method::Auto` found the model stiff in an earlier segment (the later
     /// ones start with BDF).
     stiff: bool,
+    /// The last segment's evaluation workspaces, for the next segment on the same
+    /// compiled functions.
+    workspaces: Option<Workspaces>,
+}
+
+/// The evaluation workspaces of a segment's compiled functions: kept for the next
+/// segment on the same functions, their sparse LUs keep their column orders and
+/// pivots (searching an order again after each of EngineV6's 1 290 events took a
+/// fifth of its solve).
+pub(super) struct Workspaces {
+    /// Id of the residual tape they were made for.
+    tape: u64,
+    ws: Workspace,
+    jws: Option<JacobianWorkspace>,
+    ews: Option<ExtendedWorkspace>,
+    crossings: Option<Workspace>,
 }
 
 impl Run {
@@ -1550,6 +1585,9 @@ pub(crate) struct CompiledFunctions<'c> {
     /// The extended Jacobian and its workspace, when it is used (asked of `c` once, in
     /// [`Self::new`]: the first call analyses it).
     ews: Option<(&'c ExtendedJacobian, ExtendedWorkspace)>,
+    /// Recycled workspaces these functions do not use (kept for the next segment):
+    /// the extended Jacobian's, the crossing functions'.
+    parked: (Option<ExtendedWorkspace>, Option<Workspace>),
     layout: InputLayout,
     /// The signals that drive the model's inputs.
     drivers: Drivers,
@@ -1559,24 +1597,56 @@ impl<'c> CompiledFunctions<'c> {
     /// Functions of `c` at parameter values `params`; `extended` selects the extended
     /// Jacobian (when `c` has one; sparse LU only).
     pub(crate) fn new(c: &'c CompiledDae, params: &[f64], extended: bool) -> Self {
+        Self::recycling(c, params, extended, None)
+    }
+
+    /// [`Self::new`] evaluating in `recycled`, the workspaces of an earlier segment,
+    /// where they were made for the same residual (their sparse LUs keep their column
+    /// orders and pivots; searching the orders again after each of EngineV6's events
+    /// took a third of its solve).
+    pub(super) fn recycling(
+        c: &'c CompiledDae,
+        params: &[f64],
+        extended: bool,
+        recycled: Option<Workspaces>,
+    ) -> Self {
         let layout = c.layout;
         let mut inputs = vec![0.0; layout.len()];
         for (j, &p) in params.iter().enumerate().take(layout.n_params) {
             inputs[layout.param(j)] = p;
         }
+        let mut w = recycled.filter(|w| w.tape == c.residual.id);
+        // Asked only when wanted: the first call analyses the extended Jacobian.
+        let ews = extended.then(|| c.extended()).flatten().map(|e| {
+            let ws = w.as_mut().and_then(|w| w.ews.take());
+            (e, ws.unwrap_or_else(|| e.workspace(&c.residual)))
+        });
+        let (ws, jws, parked, crossings) = match w {
+            Some(w) => (w.ws, w.jws, w.ews, w.crossings),
+            None => (c.residual.workspace(), None, None, None),
+        };
         CompiledFunctions {
             c,
             crossings: None,
             inputs,
-            ws: c.residual.workspace(),
-            jws: None,
-            // Asked only when wanted: the first call analyses the extended Jacobian.
-            ews: extended
-                .then(|| c.extended())
-                .flatten()
-                .map(|e| (e, e.workspace(&c.residual))),
+            ws,
+            jws,
+            ews,
+            parked: (parked, crossings),
             layout,
             drivers: Drivers::default(),
+        }
+    }
+
+    /// The workspaces, for the next segment ([`Self::recycling`]).
+    pub(super) fn into_workspaces(self) -> Workspaces {
+        let (parked_ews, parked_crossings) = self.parked;
+        Workspaces {
+            tape: self.c.residual.id,
+            ws: self.ws,
+            jws: self.jws,
+            ews: self.ews.map(|(_, w)| w).or(parked_ews),
+            crossings: self.crossings.map(|c| c.ws).or(parked_crossings),
         }
     }
 
@@ -1617,9 +1687,10 @@ impl<'c> CompiledFunctions<'c> {
                 })
                 .collect();
             let started = false;
+            let ws = self.parked.1.take().unwrap_or_else(|| observed.workspace());
             self.crossings = Some(Crossings {
                 observed,
-                ws: observed.workspace(),
+                ws,
                 out: vec![0.0; observed.n_outputs()],
                 outputs: found.iter().map(|&k| relations[k].crossing).collect(),
                 relations: found,
@@ -1647,16 +1718,11 @@ impl<'c> CompiledFunctions<'c> {
         Ok(())
     }
 
-    /// IDA's root information `roots` (one per crossing function) per relation of
-    /// the system (`n`; 0 for the time events).
-    fn relation_roots(&self, roots: &[i32], n: usize) -> Vec<i32> {
-        let mut out = vec![0; n];
-        if let Some(c) = &self.crossings {
-            for (&k, &r) in c.relations.iter().zip(roots) {
-                out[k] = r;
-            }
-        }
-        out
+    /// The relation of each crossing function.
+    fn crossing_relations(&self) -> Vec<usize> {
+        self.crossings
+            .as_ref()
+            .map_or_else(Vec::new, |c| c.relations.clone())
     }
 
     /// Loads the point `(t, y, yp)` and the inputs' values at `t`.
