@@ -13,7 +13,7 @@ use multibody::parts::{Body, FlexibleBeam, clamped_free_root, section_properties
 use multibody::prelude::*;
 use multibody::rotational::Position;
 use multibody::world::World;
-use multibody::{SteadyStateOptions, linearize, steady_state};
+use multibody::{Pole, SteadyStateOptions, linearize, steady_state};
 
 /// The beam clamped to the world at its `frame_a` (no gravity), loaded at its end by
 /// `force` (resolved in the world).
@@ -44,15 +44,29 @@ pub fn settled_end(model: &System, t_end: f64) -> Result<[f64; 3], multibody::Er
     Ok([u(1)?, u(2)?, u(3)?])
 }
 
-/// The bending eigenfrequencies of the cantilever `beam` (no load) \[rad/s\], ascending.
-pub fn frequencies(beam: FlexibleBeam) -> Result<Vec<f64>, multibody::Error> {
-    let ssys = structural_simplify(&cantilever(beam, [0.0; 3]))?;
+/// The poles of `model` linearized at its start.
+pub fn poles(model: &System) -> Result<Vec<Pole>, multibody::Error> {
+    let ssys = structural_simplify(model)?;
     let point = DaeProblem::new(&ssys, &[], (0.0, 1.0))?.operating_point();
-    let lin = linearize(&ssys, &point, &[], &[])?;
-    let mut w: Vec<f64> = lin.poles().iter().map(|p| p.frequency).collect();
+    Ok(linearize(&ssys, &point, &[], &[])?.poles())
+}
+
+/// The natural frequencies of `model` linearized at its start \[rad/s\], ascending,
+/// without the zero ones and each once.
+pub fn natural_frequencies(model: &System) -> Result<Vec<f64>, multibody::Error> {
+    let mut w: Vec<f64> = poles(model)?
+        .iter()
+        .map(|p| p.frequency)
+        .filter(|w| *w > 1e-6)
+        .collect();
     w.sort_by(f64::total_cmp);
     w.dedup_by(|a, b| (*a - *b).abs() < 1e-9 * b.abs());
     Ok(w)
+}
+
+/// The bending eigenfrequencies of the cantilever `beam` (no load) \[rad/s\], ascending.
+pub fn frequencies(beam: FlexibleBeam) -> Result<Vec<f64>, multibody::Error> {
+    natural_frequencies(&cantilever(beam, [0.0; 3]))
 }
 
 /// The seed's beam (bending in the xy plane only) with a 0.5 kg mass at its end, on a

@@ -16,6 +16,7 @@
 use multibody::blocks::{RealInput, RealOutput};
 use multibody::interfaces::Frame;
 use multibody::joints::{Prismatic, Spherical, Universal};
+use multibody::nalgebra::{Matrix6, Vector3, Vector6};
 use multibody::parts::{Body, FixedTranslation, OrientationStates};
 use multibody::prelude::*;
 use multibody::translational::{Force, Position};
@@ -348,52 +349,40 @@ pub fn guesses(motion: Motion) -> Vec<(String, f64)> {
     g
 }
 
-/// The independent static balance of the platform at rest: the forces along the legs
-/// (positive pushing the platform away from the base) that hold its weight, from the
-/// 6 x 6 system of the legs' lines of action (force and moment about the platform's
-/// centre).
-pub fn static_leg_forces() -> [f64; 6] {
-    let c = [0.0, H_START, 0.0];
-    let mut a = [[0.0; 7]; 6];
+/// The forces along the legs (positive pushing the platform away from the base) whose
+/// sum and moment about the world point `about` are `load` (force, then moment), with
+/// the platform posed as `motion` at `t`: the 6 x 6 system of the legs' lines of
+/// action.
+pub fn leg_forces(motion: Motion, t: f64, about: [f64; 3], load: [f64; 6]) -> [f64; 6] {
+    let mut a = Matrix6::zeros();
     for (i, &(b, p)) in LEGS.iter().enumerate() {
-        let (b, p) = (base_corner(b), Motion::REST.corner(p, 0.0));
-        let mut u = [p[0] - b[0], p[1] - b[1], p[2] - b[2]];
-        let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-        u.iter_mut().for_each(|x| *x /= l);
-        let r = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
-        let m = [
-            r[1] * u[2] - r[2] * u[1],
-            r[2] * u[0] - r[0] * u[2],
-            r[0] * u[1] - r[1] * u[0],
-        ];
+        let (b, p) = (base_corner(b), motion.corner(p, t));
+        let u = Vector3::from(p) - Vector3::from(b);
+        let u = u / u.norm();
+        let m = (Vector3::from(p) - Vector3::from(about)).cross(&u);
         for j in 0..3 {
-            a[j][i] = u[j];
-            a[3 + j][i] = m[j];
+            a[(j, i)] = u[j];
+            a[(3 + j, i)] = m[j];
         }
     }
-    // The legs carry the weight: sum f_i u_i = (0, m g, 0), and their moment about
-    // the centre balances the weight's, CM x (0, -m g, 0).
-    a[1][6] = M_PLATFORM * G;
-    a[3][6] = -CM[2] * M_PLATFORM * G;
-    a[5][6] = CM[0] * M_PLATFORM * G;
-    // Gaussian elimination with partial pivoting.
-    for k in 0..6 {
-        let p = (k..6)
-            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
-            .expect("rows");
-        a.swap(k, p);
-        for i in k + 1..6 {
-            let f = a[i][k] / a[k][k];
-            for j in k..7 {
-                a[i][j] -= f * a[k][j];
-            }
-        }
-    }
-    let mut f = [0.0; 6];
-    for k in (0..6).rev() {
-        f[k] = (a[k][6] - (k + 1..6).map(|j| a[k][j] * f[j]).sum::<f64>()) / a[k][k];
-    }
-    f
+    let f = a
+        .lu()
+        .solve(&Vector6::from(load))
+        .expect("the legs' lines of action are independent");
+    f.into()
+}
+
+/// The independent static balance of the platform at rest: the forces along the legs
+/// that hold its weight, `(0, m g, 0)`, and balance its moment about the platform's
+/// centre, `CM x (0, -m g, 0)`.
+pub fn static_leg_forces() -> [f64; 6] {
+    let w = M_PLATFORM * G;
+    leg_forces(
+        Motion::REST,
+        0.0,
+        [0.0, H_START, 0.0],
+        [0.0, w, 0.0, -CM[2] * w, 0.0, CM[0] * w],
+    )
 }
 
 #[allow(dead_code)]

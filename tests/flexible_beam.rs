@@ -2,10 +2,13 @@
 //! shortens the beam by a series that converges slowly in the lengthening modes), the
 //! cantilever's bending eigenfrequencies, its tip deflection under a transverse load.
 
+#[path = "support/analytic.rs"]
+mod analytic;
 #[path = "../examples/flexible_beam.rs"]
 #[allow(dead_code)]
 mod beam_example;
-use beam_example::{cantilever, frequencies, settled_end};
+use analytic::elliptic_k;
+use beam_example::{cantilever, frequencies, natural_frequencies, poles, settled_end};
 use multibody::parts::{FlexibleBeam, clamped_free_root, section_properties};
 
 #[test]
@@ -113,13 +116,7 @@ fn a_stiff_beam_swings_as_a_rigid_rod() {
     let m = beam.rho * a * beam.l;
     let j = m * beam.l * beam.l / 3.0 + beam.rho * i_z * beam.l;
     let g = 9.80665;
-    // K(1/sqrt(2)) by the arithmetic-geometric mean (a fixed number of rounds: it
-    // converges quadratically).
-    let (mut x, mut y) = (1.0f64, 0.5f64.sqrt());
-    for _ in 0..40 {
-        (x, y) = (0.5 * (x + y), (x * y).sqrt());
-    }
-    let k = std::f64::consts::PI / (2.0 * x);
+    let k = elliptic_k(0.5f64.sqrt());
     let quarter = (j / (m * g * beam.l / 2.0)).sqrt() * k;
     let model: System = system! {
         name: "stiff_pendulum";
@@ -167,26 +164,6 @@ fn pinned_free_root(n: usize) -> f64 {
     b
 }
 
-/// The natural frequencies of `model` linearized at its start \[rad/s\], ascending,
-/// without the zero ones.
-fn natural_frequencies(model: &multibody::prelude::System) -> Vec<f64> {
-    use multibody::prelude::*;
-    let ssys = structural_simplify(model).unwrap();
-    let point = DaeProblem::new(&ssys, &[], (0.0, 1.0))
-        .unwrap()
-        .operating_point();
-    let lin = multibody::linearize(&ssys, &point, &[], &[]).unwrap();
-    let mut w: Vec<f64> = lin
-        .poles()
-        .iter()
-        .map(|p| p.frequency)
-        .filter(|w| *w > 1e-6)
-        .collect();
-    w.sort_by(f64::total_cmp);
-    w.dedup_by(|a, b| (*a - *b).abs() < 1e-9 * b.abs());
-    w
-}
-
 #[test]
 fn a_hinged_beam_vibrates_at_the_pinned_free_frequencies() {
     use multibody::joints::Revolute;
@@ -219,7 +196,7 @@ fn a_hinged_beam_vibrates_at_the_pinned_free_frequencies() {
             connect(hinge.frame_b, beam.frame_a);
         }
         .into();
-        let w = natural_frequencies(&model);
+        let w = natural_frequencies(&model).unwrap();
         let errors: Vec<f64> = (1..=2)
             .map(|k| w[k - 1] / (pinned_free_root(k).powi(2) * scale) - 1.0)
             .collect();
@@ -273,22 +250,17 @@ fn a_spinning_cantilever_is_stiffened_by_southwell_s_coefficients() {
         }
         .into()
     };
-    let w = natural_frequencies(&spun(beam.clone()));
-    let nearest = |target: f64| {
-        *w.iter()
-            .min_by(|x, y| (*x - target).abs().total_cmp(&(*y - target).abs()))
-            .unwrap()
-    };
+    let w = natural_frequencies(&spun(beam.clone())).unwrap();
     for (n, southwell) in [(1, 1.1933), (2, 6.4782)] {
         let flap0 = base(i_y, n);
-        let flap = nearest(flap0);
+        let flap = nearest(&w, flap0);
         let k = (flap * flap - flap0 * flap0) / (spin * spin);
         assert!(
             (k - southwell).abs() < 1e-4 * southwell,
             "flapping {n}: {k}"
         );
         let lag0 = base(i_z, n);
-        let lag = nearest(lag0);
+        let lag = nearest(&w, lag0);
         let k = (lag * lag - lag0 * lag0) / (spin * spin);
         assert!(
             (k - (southwell - 1.0)).abs() < 1e-4 * southwell,
@@ -298,12 +270,10 @@ fn a_spinning_cantilever_is_stiffened_by_southwell_s_coefficients() {
     let w = natural_frequencies(&spun(FlexibleBeam {
         geometric_stiffening: false,
         ..beam
-    }));
+    }))
+    .unwrap();
     let flap0 = base(i_y, 1);
-    let flap = *w
-        .iter()
-        .min_by(|x, y| (*x - flap0).abs().total_cmp(&(*y - flap0).abs()))
-        .unwrap();
+    let flap = nearest(&w, flap0);
     assert!((flap - flap0).abs() < 1e-9 * flap0, "{flap} vs {flap0}");
 }
 
@@ -437,7 +407,7 @@ fn a_shaft_twists_at_the_closed_form_torsion_frequencies() {
             connect(hinge.frame_b, shaft.frame_a);
         }
         .into();
-        let w = natural_frequencies(&model);
+        let w = natural_frequencies(&model).unwrap();
         let error = w[0] / (pi * wave) - 1.0;
         assert!(error > 0.0 && error < previous, "{n} modes: {error}");
         previous = error;
@@ -448,16 +418,18 @@ fn a_shaft_twists_at_the_closed_form_torsion_frequencies() {
 /// The largest real part of the poles of `model` linearized at its start \[1/s\]:
 /// positive where it is unstable.
 fn largest_real_part(model: &multibody::prelude::System) -> f64 {
-    use multibody::prelude::*;
-    let ssys = structural_simplify(model).unwrap();
-    let point = DaeProblem::new(&ssys, &[], (0.0, 1.0))
+    poles(model)
         .unwrap()
-        .operating_point();
-    let lin = multibody::linearize(&ssys, &point, &[], &[]).unwrap();
-    lin.poles()
         .iter()
         .map(|p| p.value.re)
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The frequency of `w` nearest `target`.
+fn nearest(w: &[f64], target: f64) -> f64 {
+    *w.iter()
+        .min_by(|x, y| (*x - target).abs().total_cmp(&(*y - target).abs()))
+        .unwrap()
 }
 
 #[test]

@@ -6,52 +6,38 @@
 #[path = "../examples/hexapod.rs"]
 #[allow(dead_code)]
 mod hexapod_example;
+#[path = "support/mechanics.rs"]
+mod mechanics;
 use hexapod_example::{
-    CM, Drive, G, I_ROLL, LEGS, M_PLATFORM, Motion, base_corner, guesses, hexapod, hexapod_driven,
+    CM, Drive, G, I_ROLL, M_PLATFORM, Motion, guesses, hexapod, hexapod_driven, leg_forces,
     static_leg_forces,
 };
+use mechanics::cross;
 use multibody::prelude::*;
 
-fn solve(motion: Motion, t_end: f64) -> Solution {
-    let ssys = structural_simplify(&hexapod(motion)).unwrap();
+/// `ssys` (a hexapod moving as `motion`) solved from the start of `motion` to `t_end`,
+/// output every `dt`.
+fn solve_system(
+    ssys: &multibody::SimplifiedSystem,
+    motion: Motion,
+    t_end: f64,
+    dt: f64,
+) -> Solution {
     let guesses = guesses(motion);
     let named: Vec<(&str, f64)> = guesses.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    DaeProblem::new_with_guesses(&ssys, &[], &named, (0.0, t_end))
+    DaeProblem::new_with_guesses(ssys, &[], &named, (0.0, t_end))
         .unwrap()
         .solve(&SolverOptions {
             rtol: 1e-8,
             atol: 1e-10,
-            ..SolverOptions::default().with_output_interval(0.0, t_end, 0.1)
+            ..SolverOptions::default().with_output_interval(0.0, t_end, dt)
         })
         .unwrap()
 }
 
-fn solve6(mut a: [[f64; 7]; 6]) -> [f64; 6] {
-    for k in 0..6 {
-        let p = (k..6)
-            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
-            .unwrap();
-        a.swap(k, p);
-        for i in k + 1..6 {
-            let f = a[i][k] / a[k][k];
-            for j in k..7 {
-                a[i][j] -= f * a[k][j];
-            }
-        }
-    }
-    let mut x = [0.0; 6];
-    for k in (0..6).rev() {
-        x[k] = (a[k][6] - (k + 1..6).map(|j| a[k][j] * x[j]).sum::<f64>()) / a[k][k];
-    }
-    x
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+fn solve(motion: Motion, t_end: f64) -> Solution {
+    let ssys = structural_simplify(&hexapod(motion)).unwrap();
+    solve_system(&ssys, motion, t_end, 0.1)
 }
 
 #[test]
@@ -121,23 +107,19 @@ fn the_platform_follows_the_motion_and_the_forces_are_its_newton_euler_equations
             .map(|j| a_c[j] + cross(al, r)[j] + cross(om, cross(om, r))[j])
             .collect();
         let cm = [c[0] + r[0], c[1] + r[1], c[2] + r[2]];
-        let mut a = [[0.0; 7]; 6];
-        for (i, &(b, p)) in LEGS.iter().enumerate() {
-            let (b, p) = (base_corner(b), motion.corner(p, t));
-            let mut u = [p[0] - b[0], p[1] - b[1], p[2] - b[2]];
-            let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-            u.iter_mut().for_each(|x| *x /= l);
-            let m = cross([p[0] - cm[0], p[1] - cm[1], p[2] - cm[2]], u);
-            for j in 0..3 {
-                a[j][i] = u[j];
-                a[3 + j][i] = m[j];
-            }
-        }
-        for j in 0..3 {
-            a[j][6] = M_PLATFORM * a_cm[j] + if j == 1 { M_PLATFORM * G } else { 0.0 };
-        }
-        a[3][6] = I_ROLL * alpha;
-        let want = solve6(a);
+        let want = leg_forces(
+            motion,
+            t,
+            cm,
+            [
+                M_PLATFORM * a_cm[0],
+                M_PLATFORM * (a_cm[1] + G),
+                M_PLATFORM * a_cm[2],
+                I_ROLL * alpha,
+                0.0,
+                0.0,
+            ],
+        );
         for i in 0..6 {
             let got = forces[i][k];
             assert!(
@@ -165,16 +147,7 @@ fn force_controlled_legs_give_the_seed_s_18_states_and_track_the_motion() {
                 assert!(states.contains(&name), "{name} not in {states:?}");
             }
         }
-        let guesses = guesses(motion);
-        let named: Vec<(&str, f64)> = guesses.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        DaeProblem::new_with_guesses(&ssys, &[], &named, (0.0, t_end))
-            .unwrap()
-            .solve(&SolverOptions {
-                rtol: 1e-8,
-                atol: 1e-10,
-                ..SolverOptions::default().with_output_interval(0.0, t_end, 0.05)
-            })
-            .unwrap()
+        solve_system(&ssys, motion, t_end, 0.05)
     };
     // At rest the controllers settle on the forces of the independent static balance.
     let sol = solve_controlled(Motion::REST, 1.0);

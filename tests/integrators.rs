@@ -3,8 +3,11 @@
 //! changed without recompiling; the automatic choice on a non-stiff and a stiff model;
 //! the error of an ODE method asked of a model with algebraic unknowns.
 
+#[path = "support/analytic.rs"]
+mod analytic;
 #[path = "support/small_models.rs"]
 mod small_models;
+use analytic::elliptic_k;
 #[path = "../examples/bench_pendulum_chain/stiff_chain.rs"]
 mod stiff;
 
@@ -25,18 +28,6 @@ const ALL: [Method; 10] = [
     Method::Verner9,
     Method::Kvaerno5,
 ];
-
-/// The complete elliptic integral of the first kind K(k), by the arithmetic-geometric
-/// mean.
-fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
-    // Quadratic convergence: a fixed number of rounds (a tolerance on a - b may never
-    // be met by rounding).
-    for _ in 0..40 {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
 
 fn options(method: Method, rtol: f64) -> SolverOptions {
     SolverOptions {

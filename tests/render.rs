@@ -11,6 +11,10 @@ mod fourbar_example;
 #[allow(dead_code)]
 mod pendulum_example;
 
+#[path = "../examples/flexible_beam.rs"]
+#[allow(dead_code)]
+mod flexible_beam_example;
+
 use std::path::PathBuf;
 
 use multibody::forces::Spring;
@@ -374,8 +378,6 @@ fn bad_requests_are_errors() {
 
 #[test]
 fn a_flexible_beam_is_drawn_bent_along_its_deflection_curve() {
-    use multibody::blocks::Constant3;
-    use multibody::forces::WorldForce;
     use multibody::parts::{CrossSection, FlexibleBeam, section_properties};
     // A critically damped 5 cm square cantilever along x, settled under a load -P y at
     // its end that bends it 0.4 m down.
@@ -390,16 +392,7 @@ fn a_flexible_beam_is_drawn_bent_along_its_deflection_curve() {
     };
     let (l, ei) = (beam.l, beam.E * section_properties(beam.cross_section).2);
     let p = 0.4 * 3.0 * ei / l.powi(3);
-    let model = system! {
-        name: "bent";
-        world = World { g: 0.0, ..Default::default() };
-        beam = beam;
-        load = WorldForce::default();
-        value = Constant3 { k: [0.0, -p, 0.0] };
-        connect(world.frame_b, beam.frame_a);
-        connect(beam.frame_b, load.frame_b);
-        connect(value.y, load.force);
-    };
+    let model = flexible_beam_example::cantilever(beam, [0.0, -p, 0.0]);
     let ssys = structural_simplify(&model).unwrap();
     let t = 0.5;
     let sol = DaeProblem::new(&ssys, &[], (0.0, t))

@@ -91,8 +91,8 @@ fn chain(n: usize) -> System {
     m
 }
 
-/// The chain of [`chain`] for the baseline.
-fn baseline_chain(n: usize) -> Rne {
+/// The links of [`chain`], for the hand-written baselines.
+fn links(n: usize) -> Vec<Link> {
     let link = Link {
         axis: [0.0, 0.0, 1.0],
         r: [L, 0.0, 0.0],
@@ -100,7 +100,12 @@ fn baseline_chain(n: usize) -> Rne {
         m: M,
         inertia: [[I_ZZ, 0.0, 0.0], [0.0, I_ZZ, 0.0], [0.0, 0.0, I_ZZ]],
     };
-    Rne::new(vec![link; n], [0.0, -G, 0.0])
+    vec![link; n]
+}
+
+/// The chain of [`chain`] for the baseline.
+fn baseline_chain(n: usize) -> Rne {
+    Rne::new(links(n), [0.0, -G, 0.0])
 }
 
 /// Solves the baseline; returns its solve time, its steps and `q1` at `T_CHECK`.

@@ -10,9 +10,8 @@ use multibody_core::solve::ida::{IdaSettings, OutputMode};
 use multibody_core::solve::ode::{self, OdeMethod};
 
 use super::aba::Aba;
-use super::rne::Link;
 use super::stiff_chain::stiff_chain;
-use super::{ATOL, G, I_ZZ, L, M, RTOL, T_CHECK, T_END};
+use super::{ATOL, G, RTOL, T_CHECK, T_END, links};
 
 /// The methods compared, with the ARKODE table of the explicit ones.
 const METHODS: [(Method, Option<&str>); 8] = [
@@ -28,14 +27,7 @@ const METHODS: [(Method, Option<&str>); 8] = [
 
 /// The baseline by `table`: its solve time, steps and `q1` at `T_CHECK`.
 fn baseline(n: usize, table: &'static str) -> (f64, u64, f64) {
-    let link = Link {
-        axis: [0.0, 0.0, 1.0],
-        r: [L, 0.0, 0.0],
-        r_cm: [L, 0.0, 0.0],
-        m: M,
-        inertia: [[I_ZZ, 0.0, 0.0], [0.0, I_ZZ, 0.0], [0.0, 0.0, I_ZZ]],
-    };
-    let mut f = Aba::new(vec![link; n], [0.0, -G, 0.0]);
+    let mut f = Aba::new(links(n), [0.0, -G, 0.0]);
     let settings = IdaSettings {
         rtol: RTOL,
         atol: ATOL,

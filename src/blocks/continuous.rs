@@ -4,6 +4,16 @@
 use super::interfaces::*;
 use crate::prelude::*;
 
+/// The acceleration by which MSL's position sources (`Rotational` and
+/// `Translational.Sources.Position`) follow their reference through a critically
+/// damped 2nd-order Bessel filter of cut-off frequency `f_crit` \[Hz\]
+/// (`af = 1.3617`, `bf = 0.6180`): from the position error `error` and the speed
+/// `speed`.
+pub(crate) fn bessel_follow(error: Expr, speed: Expr, f_crit: Expr) -> Expr {
+    let w = 2.0 * PI * f_crit;
+    (error * w - 1.3617 * speed) * (w / 0.6180)
+}
+
 component! {
     /// Output the integral of the input times a gain (MSL `Blocks.Continuous.Integrator`).
     #[type_name = "Blocks.Integrator"]

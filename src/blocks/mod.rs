@@ -5,6 +5,7 @@
 
 mod combi;
 mod continuous;
+pub(crate) use continuous::bessel_follow;
 mod discrete;
 mod interfaces;
 mod kinematic;

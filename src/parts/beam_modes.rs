@@ -245,31 +245,35 @@ impl Shape {
     /// free, written with decaying exponentials so that high modes stay accurate; the
     /// others sines.
     pub fn eval(&self, x: f64) -> [f64; 3] {
+        self.evaluator()(x)
+    }
+
+    /// [`Self::eval`] with the wavenumber and the constants of the shape found once,
+    /// for evaluating at many points.
+    pub fn evaluator(&self) -> impl Fn(f64) -> [f64; 3] + use<> {
         let b = self.wavenumber();
-        match (self.kind, self.boundary) {
-            (ModeKind::BendingXy | ModeKind::BendingXz, BeamBoundary::ClampedFree) => {
-                let bl = b * self.l;
-                // s = (cosh bl + cos bl) / (sinh bl + sin bl); 1 - s in a stable form.
-                let s = (bl.cosh() + bl.cos()) / (bl.sinh() + bl.sin());
-                let one_minus_s = (-(-bl).exp() + bl.sin() - bl.cos()) / (bl.sinh() + bl.sin());
-                let z = b * x;
-                // cosh z - s sinh z = ((1 - s) e^z + (1 + s) e^-z) / 2.
-                let e = (z - bl).exp(); // e^z scaled by e^-bl
-                let scaled = one_minus_s * bl.exp(); // (1 - s) e^bl, moderate
-                let ch_sh = 0.5 * (scaled * e + (1.0 + s) * (-z).exp());
-                let sh_ch = 0.5 * (scaled * e - (1.0 + s) * (-z).exp()); // d/dz of the above
-                let (sz, cz) = z.sin_cos();
-                let v = ch_sh - cz + s * sz;
-                let d1 = b * (sh_ch + sz + s * cz);
-                let d2 = b * b * (ch_sh + cz - s * sz);
-                [v, d1, d2]
+        let bl = b * self.l;
+        let bending = matches!(self.kind, ModeKind::BendingXy | ModeKind::BendingXz)
+            && self.boundary == BeamBoundary::ClampedFree;
+        // s = (cosh bl + cos bl) / (sinh bl + sin bl); 1 - s in a stable form, and
+        // (1 - s) e^bl, moderate.
+        let s = (bl.cosh() + bl.cos()) / (bl.sinh() + bl.sin());
+        let scaled = (-(-bl).exp() + bl.sin() - bl.cos()) / (bl.sinh() + bl.sin()) * bl.exp();
+        move |x| {
+            let z = b * x;
+            if !bending {
+                let (s, c) = z.sin_cos();
+                return [s, b * c, -b * b * s];
             }
-            (ModeKind::Lengthening, BeamBoundary::ClampedFree)
-            | (ModeKind::Torsion, _)
-            | (_, BeamBoundary::SupportedSupported) => {
-                let (s, c) = (b * x).sin_cos();
-                [s, b * c, -b * b * s]
-            }
+            // cosh z - s sinh z = ((1 - s) e^z + (1 + s) e^-z) / 2.
+            let e = (z - bl).exp(); // e^z scaled by e^-bl
+            let ch_sh = 0.5 * (scaled * e + (1.0 + s) * (-z).exp());
+            let sh_ch = 0.5 * (scaled * e - (1.0 + s) * (-z).exp()); // d/dz of the above
+            let (sz, cz) = z.sin_cos();
+            let v = ch_sh - cz + s * sz;
+            let d1 = b * (sh_ch + sz + s * cz);
+            let d2 = b * b * (ch_sh + cz - s * sz);
+            [v, d1, d2]
         }
     }
 }
@@ -343,8 +347,9 @@ fn simpson(l: f64) -> impl Iterator<Item = (f64, f64)> {
 /// the area, or the polar moment for torsion; see [`ModeData`]).
 pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
     let (mut mm, mut kk, mut f0, mut f1) = (0.0, 0.0, 0.0, 0.0);
+    let eval = shape.evaluator();
     for (x, w) in simpson(shape.l) {
-        let [v, d1, d2] = shape.eval(x);
+        let [v, d1, d2] = eval(x);
         mm += w * v * v;
         kk += w * if matches!(shape.kind, ModeKind::Lengthening | ModeKind::Torsion) {
             d1 * d1
@@ -354,7 +359,7 @@ pub fn mode_data(shape: Shape, rho: f64, a: f64, stiffness: f64) -> ModeData {
         f0 += w * v;
         f1 += w * x * v;
     }
-    let [tip, tip_slope, _] = shape.eval(shape.l);
+    let [tip, tip_slope, _] = eval(shape.l);
     ModeData {
         kind: shape.kind,
         mass: rho * a * mm,
@@ -396,8 +401,9 @@ pub fn pair_integrals(shapes: &[Shape], rho: f64, a: f64) -> PairIntegrals {
         slope_acceleration: zero(),
         slope_spin: zero(),
     };
+    let evals: Vec<_> = shapes.iter().map(Shape::evaluator).collect();
     for (x, w) in simpson(l) {
-        let values: Vec<[f64; 3]> = shapes.iter().map(|s| s.eval(x)).collect();
+        let values: Vec<[f64; 3]> = evals.iter().map(|e| e(x)).collect();
         for (i, vi) in values.iter().enumerate() {
             for (j, vj) in values.iter().enumerate() {
                 let slopes = w * vi[1] * vj[1];

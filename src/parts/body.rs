@@ -108,7 +108,7 @@ component! {
         /// root, default 1000 (always: MSL's `enforceStates`). Lower it for a body that
         /// no joint orients but kinematic loops hold (the platform of a parallel
         /// mechanism), whose orientation the loops determine.
-        structural orientation_state_priority: f64 = 1000.0;
+        structural orientation_state_priority: f64 = StateSelect::Always.priority();
         /// Radius of the sphere drawn at the centre of mass \[m\] (0 hides it).
         structural radius: f64 = 0.05;
         /// Colour of the sphere when rendered, RGB in 0..1 (MSL's body colour).

@@ -6,30 +6,12 @@ use super::beam_modes::{
 };
 use crate::blocks::StateVector;
 use crate::frames::{
-    Orientation, Vec3, absolute_rotation, axes_rotations, inverse_rotation, resolve1, resolve2,
+    Orientation, Vec3, absolute_rotation, axes_rotations, axis, inverse_rotation, resolve1,
+    resolve2,
 };
 use crate::interfaces::Frame;
 use crate::prelude::*;
 use crate::world::gravity_acceleration;
-
-/// The modes of `beam`: per mode its data and its direction of displacement in the
-/// beam's frame, in the order of the modal coordinates.
-pub fn beam_modes(beam: &FlexibleBeam) -> Vec<(ModeData, [f64; 3])> {
-    modes_of(
-        beam.l,
-        beam.cross_section,
-        beam.rho,
-        beam.E,
-        beam.nu,
-        beam.boundary,
-        [
-            beam.n_lengthening,
-            beam.n_bending_xy,
-            beam.n_bending_xz,
-            beam.n_torsion,
-        ],
-    )
-}
 
 /// The modes of a beam of length `l`, section `section`, density `rho`, Young's
 /// modulus `e` and Poisson's ratio `nu` with `counts` lengthening, xy-bending,
@@ -164,35 +146,31 @@ component! {
             for i in 0..modes.len() {
                 der(q.x(i)) = qd.x(i);
             }
-            let sum = |f: &dyn Fn(usize, &ModeData, Vec3) -> Vec3| -> Vec3 {
-                modes
-                    .iter()
-                    .enumerate()
-                    .fold(Vec3::zero(), |acc, (i, (d, dir))| acc + f(i, d, Vec3::constant(*dir)))
+            let n = modes.len();
+            let dirs: Vec<Vec3> = modes.iter().map(|(_, dir)| Vec3::constant(*dir)).collect();
+            // Sums over the modes, and over the modes of one kind.
+            let over_modes = |f: &dyn Fn(usize, &ModeData) -> Vec3| -> Vec3 {
+                modes.iter().enumerate().fold(Vec3::zero(), |acc, (i, (d, _))| acc + f(i, d))
             };
-            let ex = Vec3::constant([1.0, 0.0, 0.0]);
-            let s = Vec3::constant([m * l / 2.0, 0.0, 0.0]) + sum(&|i, d, dir| dir.scale(d.first * q.x(i)));
-            let sd = sum(&|i, d, dir| dir.scale(d.first * qd.x(i)));
-            let sdd = sum(&|i, d, dir| dir.scale(d.first * der(qd.x(i))));
-            let u = sum(&|i, d, dir| dir.scale(d.tip * q.x(i)));
-            // Slopes at the end: about z from the xy modes, about y (negative) from xz.
-            let slope = |kind: ModeKind, sign: f64, x: &dyn Fn(usize) -> Expr| -> Expr {
+            let over_kind = |kind: ModeKind, f: &dyn Fn(usize, &ModeData) -> Expr| -> Expr {
                 modes.iter().enumerate().fold(Expr::constant(0.0), |acc, (i, (d, _))| {
-                    if d.kind == kind { acc + sign * d.tip_slope * x(i) } else { acc }
+                    if d.kind == kind { acc + f(i, d) } else { acc }
                 })
             };
-            let slope_z = slope(ModeKind::BendingXy, 1.0, &|i| q.x(i));
-            let slope_zd = slope(ModeKind::BendingXy, 1.0, &|i| qd.x(i));
-            let slope_y = slope(ModeKind::BendingXz, -1.0, &|i| q.x(i));
-            let slope_yd = slope(ModeKind::BendingXz, -1.0, &|i| qd.x(i));
+            let ex = axis(1);
+            let s = Vec3::constant([m * l / 2.0, 0.0, 0.0]) + over_modes(&|i, d| dirs[i].scale(d.first * q.x(i)));
+            let sd = over_modes(&|i, d| dirs[i].scale(d.first * qd.x(i)));
+            let sdd = over_modes(&|i, d| dirs[i].scale(d.first * der(qd.x(i))));
+            let u = over_modes(&|i, d| dirs[i].scale(d.tip * q.x(i)));
+            // Slopes at the end: about z from the xy modes, about y (negative) from xz.
+            let slope_z = over_kind(ModeKind::BendingXy, &|i, d| d.tip_slope * q.x(i));
+            let slope_zd = over_kind(ModeKind::BendingXy, &|i, d| d.tip_slope * qd.x(i));
+            let slope_y = over_kind(ModeKind::BendingXz, &|i, d| -d.tip_slope * q.x(i));
+            let slope_yd = over_kind(ModeKind::BendingXz, &|i, d| -d.tip_slope * qd.x(i));
             // Torsion: the twist at the end; per mode the coupling of the twisted
             // sections' inertia, rho I_p int phi (about x: `first`) and
             // rho (I_y - I_z) int phi (to the rotations about y and z).
-            let over_torsion = |f: &dyn Fn(usize, &ModeData) -> Expr| -> Expr {
-                modes.iter().enumerate().fold(Expr::constant(0.0), |acc, (i, (d, _))| {
-                    if d.kind == ModeKind::Torsion { acc + f(i, d) } else { acc }
-                })
-            };
+            let over_torsion = |f: &dyn Fn(usize, &ModeData) -> Expr| over_kind(ModeKind::Torsion, f);
             let unequal = (i_y - i_z) / (i_y + i_z);
             let twist = over_torsion(&|i, d| d.tip * q.x(i));
             let twist_d = over_torsion(&|i, d| d.tip * qd.x(i));
@@ -225,8 +203,6 @@ component! {
             // int phi_i u dm (zero cross masses of modes along one direction left out).
             let shapes: Vec<_> = mode_shapes(l, boundary, counts).into_iter().map(|(shape, _)| shape).collect();
             let pairs = pair_integrals(&shapes, rho, area);
-            let n = modes.len();
-            let dirs: Vec<Vec3> = modes.iter().map(|(_, dir)| Vec3::constant(*dir)).collect();
             let coupled = |i: usize, j: usize| pairs.mass[i][j].abs() > 1e-9 * (pairs.mass[i][i] * pairs.mass[j][j]).sqrt();
             let weighted = |x: &dyn Fn(usize) -> Expr| -> Vec<Vec3> {
                 (0..n)
@@ -236,9 +212,6 @@ component! {
             let u_q = weighted(&|j| q.x(j));
             let u_qd = weighted(&|j| qd.x(j));
             let u_qdd = weighted(&|j| der(qd.x(j)));
-            let over_modes = |f: &dyn Fn(usize, &ModeData) -> Vec3| -> Vec3 {
-                modes.iter().enumerate().fold(Vec3::zero(), |acc, (i, (d, _))| acc + f(i, d))
-            };
             // The inertia tensor about frame_a times v: rigid, first and second order in q.
             let inertia = |v: Vec3| -> Vec3 {
                 j0 * v
@@ -256,10 +229,11 @@ component! {
             // Newton and Euler of the beam about frame_a.
             frame_a.f + f_b = acc.scale(m) + z_a.cross(s) + w_a.cross(w_a.cross(s)) + w_a.cross(sd).scale(2.0) + sdd;
             let twist_moment = ex.scale(over_torsion(&|i, d| d.first * der(qd.x(i)))) + w_a.cross(ex.scale(twist_momentum)) + twist_inertia(&|i| qd.x(i), w_a);
-            frame_a.t + t_b + r_b.cross(f_b) = s.cross(acc) + inertia(z_a) + w_a.cross(inertia(w_a)) + coriolis.scale(2.0) + relative + twist_moment;
+            let jw = inertia(w_a);
+            frame_a.t + t_b + r_b.cross(f_b) = s.cross(acc) + inertia(z_a) + w_a.cross(jw) + coriolis.scale(2.0) + relative + twist_moment;
             // Energies.
             let v_a = resolve2(&frame_a.R, v_0);
-            kinetic_energy = 0.5 * m * v_a.dot(v_a) + v_a.dot(w_a.cross(s)) + v_a.dot(sd) + 0.5 * w_a.dot(inertia(w_a)) + w_a.dot(relative_momentum) + w_a[0] * twist_momentum
+            kinetic_energy = 0.5 * m * v_a.dot(v_a) + v_a.dot(w_a.cross(s)) + v_a.dot(sd) + 0.5 * w_a.dot(jw) + w_a.dot(relative_momentum) + w_a[0] * twist_momentum
                 + modes.iter().enumerate().fold(Expr::constant(0.0), |acc, (i, (d, _))| acc + 0.5 * d.mass * qd.x(i) * qd.x(i));
             elastic_energy = modes.iter().enumerate().fold(Expr::constant(0.0), |acc, (i, (d, _))| acc + 0.5 * d.stiffness * q.x(i) * q.x(i));
             // The axial force along the beam (tension positive) is
@@ -277,7 +251,7 @@ component! {
             // Each mode: its inertia, damping and stiffness against the inertial loads of
             // the rigid motion and of the other modes, and the end's force and torque.
             for (i, (d, dir)) in modes.iter().enumerate() {
-                let dir_v = Vec3::constant(*dir);
+                let dir_v = dirs[i];
                 let omega = (d.stiffness / d.mass).sqrt();
                 let rotational = ex.cross(dir_v).scale(d.first_x);
                 let centrifugal = d.first_x * (dir_v.dot(w_a) * w_a[0] - dir[0] * w_a.dot(w_a));

@@ -19,7 +19,7 @@ pub use beam_modes::{
 pub use body::*;
 pub use drive_train::*;
 pub use fixed::*;
-pub use flexible_beam::{FlexibleBeam, beam_modes};
+pub use flexible_beam::FlexibleBeam;
 pub use mass_properties::MassProperties;
 pub use rolling_wheel::*;
 pub use shapes::*;

@@ -3,7 +3,6 @@
 
 use super::geom::{Rotation, V3, add, axpy, dot, normalize, scale, sub};
 use super::mesh::Mesh;
-use crate::parts::Shape;
 
 /// MSL's body colour {0, 128, 255}.
 pub const BODY_COLOR: [f64; 3] = [0.0, 128.0 / 255.0, 1.0];
@@ -65,40 +64,36 @@ pub(crate) enum Geometry {
     Coil { a: Pos, b: Pos, radius: f64 },
     /// The world's axes at the origin: x red, y green, z blue.
     Axes { length: f64 },
-    /// A flexible beam along x of its frame `a`, bent by its modes (each shape with
-    /// its direction in the frame, scaled by the modal coordinate at `q`), drawn as
-    /// boxes `width` (along y) by `height` between points along it.
+    /// A flexible beam along x of its frame `a`, bent by its modes: at each station
+    /// along it, its `x` and per mode the displacement per unit of the modal
+    /// coordinate at `q` (resolved in the frame); drawn as boxes `width` (along y) by
+    /// `height` between the stations.
     Beam {
         a: Pos,
         rot: Rot,
-        modes: Vec<(Shape, V3)>,
+        stations: Vec<(f64, Vec<V3>)>,
         q: Vec<usize>,
         width: f64,
         height: f64,
     },
 }
 
-/// Points along a beam at which its bent shape is drawn.
-const BEAM_POINTS: usize = 24;
-
-/// The points of a bent beam at one time, in the world.
+/// The stations of a bent beam at one time, in the world.
 fn beam_points(
     a: V3,
     rot: Rotation,
-    modes: &[(Shape, V3)],
+    stations: &[(f64, Vec<V3>)],
     q: &[usize],
     value: &dyn Fn(usize) -> f64,
 ) -> Vec<V3> {
-    let l = modes.first().map_or(0.0, |(s, _)| s.l);
-    (0..=BEAM_POINTS)
-        .map(|k| {
-            let x = l * k as f64 / BEAM_POINTS as f64;
+    let q: Vec<f64> = q.iter().map(|&i| value(i)).collect();
+    stations
+        .iter()
+        .map(|(x, modes)| {
             let local = modes
                 .iter()
-                .zip(q)
-                .fold([x, 0.0, 0.0], |p, ((shape, dir), &i)| {
-                    axpy(p, shape.eval(x)[0] * value(i), *dir)
-                });
+                .zip(&q)
+                .fold([*x, 0.0, 0.0], |p, (d, &qi)| axpy(p, qi, *d));
             add(a, rot.resolve1(local))
         })
         .collect()
@@ -135,8 +130,18 @@ impl Part {
             Geometry::Hinge { a, .. } | Geometry::Ball { a, .. } => out.push(pos(a)),
             Geometry::Axes { .. } => out.push([0.0; 3]),
             Geometry::Beam {
-                a, rot, modes, q, ..
-            } => out.extend(beam_points(pos(a), rotation(rot, value), modes, q, value)),
+                a,
+                rot,
+                stations,
+                q,
+                ..
+            } => out.extend(beam_points(
+                pos(a),
+                rotation(rot, value),
+                stations,
+                q,
+                value,
+            )),
         }
     }
 
@@ -211,13 +216,13 @@ impl Part {
             Geometry::Beam {
                 a,
                 rot: r,
-                modes,
+                stations,
                 q,
                 width,
                 height,
             } => {
                 let r = rot(r);
-                let points = beam_points(pos(a), r, modes, q, value);
+                let points = beam_points(pos(a), r, stations, q, value);
                 let w = r.resolve1([0.0, 1.0, 0.0]);
                 for pair in points.windows(2) {
                     mesh.cuboid(pair[0], pair[1], w, *width, *height, c);

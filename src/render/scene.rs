@@ -40,6 +40,9 @@ fn shape_length(sys: &System) -> f64 {
     })
 }
 
+/// Intervals along a flexible beam at which its bent shape is drawn.
+const BEAM_STATIONS: usize = 24;
+
 /// `path.local`, or `local` at the root.
 fn join(path: &str, local: &str) -> String {
     if path.is_empty() {
@@ -110,7 +113,20 @@ impl Scene {
         ];
         let boundary = BeamBoundary::from_numbers(sys.structural_value("boundary")?)?;
         let section = CrossSection::from_numbers(sys.structural_value("cross_section")?)?;
-        let modes = mode_shapes(scalar(sys, "l")?, boundary, counts);
+        let l = scalar(sys, "l")?;
+        let modes = mode_shapes(l, boundary, counts);
+        let evals: Vec<_> = modes.iter().map(|(shape, _)| shape.evaluator()).collect();
+        let stations = (0..=BEAM_STATIONS)
+            .map(|k| {
+                let x = l * k as f64 / BEAM_STATIONS as f64;
+                let d = modes
+                    .iter()
+                    .zip(&evals)
+                    .map(|((_, dir), eval)| dir.map(|c| c * eval(x)[0]))
+                    .collect();
+                (x, d)
+            })
+            .collect();
         let q = (1..=modes.len())
             .map(|i| self.signal(&sys.path, join(&sys.path, &format!("q.x[{i}]"))))
             .collect();
@@ -118,7 +134,7 @@ impl Scene {
         Some(Geometry::Beam {
             a: self.pos(sys, "frame_a"),
             rot: self.rot(sys, "frame_a"),
-            modes,
+            stations,
             q,
             width,
             height,

@@ -2,6 +2,7 @@
 
 use super::interfaces::*;
 use crate::blocks::RealInput;
+use crate::blocks::bessel_follow;
 use crate::prelude::*;
 
 component! {
@@ -118,9 +119,7 @@ component! {
             if exact {
                 phi = phi_ref;
             } else {
-                // 2nd-order critically damped Bessel filter (af = 1.3617, bf = 0.6180).
-                a = ((phi_ref - phi) * (2.0 * PI * f_crit) - 1.3617 * w)
-                    * ((2.0 * PI * f_crit) / 0.6180);
+                a = bessel_follow(phi_ref - phi, w, f_crit);
             }
         }
     }

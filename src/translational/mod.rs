@@ -1,6 +1,7 @@
 //! 1-D translational mechanics (MSL `Modelica.Mechanics.Translational`): flanges
 //! carry a position `s` \[m\] and a cut force `f` \[N\] (positive into the component).
 
+use crate::blocks::bessel_follow;
 use crate::blocks::{RealInput, RealOutput};
 use crate::prelude::*;
 
@@ -237,9 +238,7 @@ component! {
             if exact {
                 s = s_ref;
             } else {
-                // MSL's 2nd-order Bessel filter (af = 1.3617, bf = 0.6180).
-                a = ((s_ref - s) * (2.0 * PI * f_crit) - 1.3617 * v)
-                    * ((2.0 * PI * f_crit) / 0.6180);
+                a = bessel_follow(s_ref - s, v, f_crit);
             }
         }
     }

@@ -22,3 +22,15 @@ pub fn damped(m: f64, d: f64, c: f64, x0: f64, v0: f64, t: f64) -> f64 {
     let a = zeta * w0;
     (-a * t).exp() * (x0 * (wd * t).cos() + (v0 + a * x0) / wd * (wd * t).sin())
 }
+
+/// The complete elliptic integral of the first kind K(k), by the arithmetic-geometric
+/// mean.
+pub fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
+    // Quadratic convergence: a fixed number of rounds (a tolerance on a - b may never
+    // be met by rounding).
+    for _ in 0..40 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    std::f64::consts::PI / (2.0 * a)
+}

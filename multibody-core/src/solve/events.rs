@@ -308,7 +308,6 @@ pub(super) fn settle(
     let c = cache.as_ref().map_or(&sys.compiled, |(_, c)| c);
     let t = point.0;
     let before = event_values(sys, params);
-    let recycled = std::cell::RefCell::new(workspaces.take());
     let result = settle_with(
         c,
         sys,
@@ -317,9 +316,8 @@ pub(super) fn settle(
         point,
         roots,
         options,
-        (history, &recycled),
+        (history, workspaces),
     );
-    *workspaces = recycled.into_inner();
     let switch = switched(sys, &before, params);
     // Where the new mode has no consistent solution, say what switched.
     let result = result.map_err(|e| with_switch(e, t, &switch));
@@ -342,7 +340,7 @@ fn settle_with(
     (t, mut y, mut yp): (f64, Vec<f64>, Vec<f64>),
     roots: &[i32],
     options: &SolverOptions,
-    (history, workspaces): (&mut History, &std::cell::RefCell<Option<Workspaces>>),
+    (history, workspaces): (&mut History, &mut Option<Workspaces>),
 ) -> Result<Settled, Error> {
     let model = &sys.model.events;
     let mut terminated = None;
@@ -392,12 +390,11 @@ fn settle_with(
         // discrete values, then the relations and the discrete equations from them,
         // until they agree.
         // The segments' workspaces serve here too (their sparse LUs keep their orders).
-        let consistent = |params: &[f64], y: &[f64], yp: &[f64]| {
+        let mut consistent = |params: &[f64], y: &[f64], yp: &[f64]| {
             let (settings, extended) = ida_settings(sys, c, options, true);
-            let recycled = workspaces.borrow_mut().take();
-            let mut f = CompiledFunctions::recycling(c, params, extended, recycled);
+            let mut f = CompiledFunctions::recycling(c, params, extended, workspaces.take());
             let r = ida::consistent_values(&mut f, t, y, yp, &settings, tout1);
-            *workspaces.borrow_mut() = Some(f.into_workspaces());
+            *workspaces = Some(f.into_workspaces());
             r.map_err(|e| {
                 Error::from(SolveError {
                     model: sys.model.name.clone(),
@@ -641,7 +638,7 @@ fn search_consistent(
     varying: &[usize],
     observer: &mut Observer,
     t: f64,
-    consistent: impl Fn(&[f64]) -> Result<Point, Error>,
+    mut consistent: impl FnMut(&[f64]) -> Result<Point, Error>,
 ) -> Result<Option<Point>, Error> {
     if varying.is_empty() || varying.len() > MAX_SEARCHED_RELATIONS {
         return Ok(None);

@@ -171,6 +171,10 @@ impl IdaStats {
     }
 }
 
+/// Up to this many unknowns the automatic choice of linear solver takes a dense LU
+/// (IDA, and CVODE's and ARKODE's implicit methods), above it the sparse LU.
+pub(crate) const DENSE_UP_TO: usize = 24;
+
 /// Failure of an integration (IDA, CVODE or ARKODE; the flag names which).
 #[derive(Debug, Clone, thiserror::Error)]
 #[error("the integrator failed at t = {t}: {flag} ({message})")]

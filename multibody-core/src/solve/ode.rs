@@ -592,7 +592,7 @@ fn open<'a>(
     {
         return Err(invalid(t0, "jacobian_pattern is not a valid CSC pattern"));
     }
-    let sparse = pattern.is_some() && n > 24;
+    let sparse = pattern.is_some() && n > super::ida::DENSE_UP_TO;
     let (col_ptr, row_idx) = pattern.clone().unwrap_or_default();
     let nnz = row_idx.len();
     let n_i = sys::sunindextype::try_from(n).map_err(|_| invalid(t0, "system too large"))?;

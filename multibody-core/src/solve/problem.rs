@@ -1371,8 +1371,7 @@ struct Run {
 
 /// The evaluation workspaces of a segment's compiled functions: kept for the next
 /// segment on the same functions, their sparse LUs keep their column orders and
-/// pivots (searching an order again after each of EngineV6's 1 290 events took a
-/// fifth of its solve).
+/// pivots (see [`CompiledFunctions::recycling`]).
 pub(super) struct Workspaces {
     /// Id of the residual tape they were made for.
     tape: u64,
@@ -1532,7 +1531,7 @@ pub(super) fn ida_settings(
 ) -> (IdaSettings, bool) {
     let n = sys.sorted.mass_matrix_diagonal.len();
     let (matrix, extended) = match options.linear_solver {
-        LinearSolver::Auto if n <= 24 => (IdaMatrix::Dense, false),
+        LinearSolver::Auto if n <= ida::DENSE_UP_TO => (IdaMatrix::Dense, false),
         LinearSolver::Auto | LinearSolver::Sparse => {
             (IdaMatrix::SparseLu, for_ida && c.extended().is_some())
         }
