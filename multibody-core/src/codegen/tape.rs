@@ -607,20 +607,7 @@ impl Tape {
         if self.outputs.len() < n {
             return false;
         }
-        let in_range = |slot: u32| (first..first + n).contains(&(slot as usize));
-        // Per register: whether it depends on one of the inputs.
-        let mut dep = vec![false; self.ops.len()];
-        for (i, op) in self.ops.iter().enumerate() {
-            dep[i] = match *op {
-                Op::Input(s) => in_range(s),
-                Op::LsPart => dep[i - 1],
-                _ => {
-                    let mut any = false;
-                    op.for_each_operand(&self.ls, |r| any |= dep[r as usize]);
-                    any
-                }
-            };
-        }
+        let dep = self.dependence(first..first + n);
         let is_input = |r: u32, k: usize| self.ops[r as usize] == Op::Input((first + k) as u32);
         self.outputs.iter().enumerate().all(|(k, &o)| {
             if k >= n {
@@ -631,6 +618,32 @@ impl Tape {
                 _ => is_input(o, k),
             }
         })
+    }
+
+    /// Per register: whether it depends on one of the input slots `slots`.
+    fn dependence(&self, slots: std::ops::Range<usize>) -> Vec<bool> {
+        let mut dep = vec![false; self.ops.len()];
+        for (i, op) in self.ops.iter().enumerate() {
+            dep[i] = match *op {
+                Op::Input(s) => slots.contains(&(s as usize)),
+                Op::LsPart => dep[i - 1],
+                _ => {
+                    let mut any = false;
+                    op.for_each_operand(&self.ls, |r| any |= dep[r as usize]);
+                    any
+                }
+            };
+        }
+        dep
+    }
+
+    /// Whether one of the outputs `outputs` depends on one of the input slots `slots`.
+    ///
+    /// # Panics
+    /// If an output index is out of range.
+    pub fn outputs_read(&self, outputs: &[usize], slots: std::ops::Range<usize>) -> bool {
+        let dep = self.dependence(slots);
+        outputs.iter().any(|&k| dep[self.outputs[k] as usize])
     }
 
     /// Number of input slots.

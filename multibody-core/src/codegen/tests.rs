@@ -243,11 +243,11 @@ fn linear_system(a: &mut Arena) -> (Vec<Id>, Vec<Id>, Stmt, Vec<Id>) {
     (vec![x, y, z], t, s, outs)
 }
 
-#[test]
-fn linear_solve_values_and_tangents() {
-    let mut a = Arena::new();
-    let (vars, _targets, s, outs) = linear_system(&mut a);
-    let mut b = TapeBuilder::new(&a, 3);
+/// The tape of [`linear_system`] with `more` outputs after its own, and the statement.
+fn linear_system_tape(a: &mut Arena, more: impl Fn(&mut Arena, &[Id]) -> Vec<Id>) -> (Tape, Stmt) {
+    let (vars, _targets, s, mut outs) = linear_system(a);
+    outs.extend(more(a, &vars));
+    let mut b = TapeBuilder::new(a, 3);
     for (i, &v) in vars.iter().enumerate() {
         b.input(v, i);
     }
@@ -255,7 +255,13 @@ fn linear_solve_values_and_tangents() {
     for &o in &outs {
         b.output(o).unwrap();
     }
-    let tape = b.build();
+    (b.build(), s)
+}
+
+#[test]
+fn linear_solve_values_and_tangents() {
+    let mut a = Arena::new();
+    let (tape, s) = linear_system_tape(&mut a, |_, _| Vec::new());
     assert!(op_names(&tape).contains("LinearSolve"));
     let Stmt::LinearSolve { a: am, c: cv, .. } = &s else {
         unreachable!()
@@ -843,4 +849,23 @@ fn explicit_residuals_are_derivatives_minus_what_the_states_give() {
     b.output_input_minus(3, g1).unwrap();
     b.output(up0).unwrap();
     assert!(!b.build().is_explicit_in(2, 2));
+}
+
+#[test]
+fn outputs_read_the_inputs_they_depend_on_through_linear_solves() {
+    let mut a = Arena::new();
+    // Inputs x, y, z in slots 0, 1, 2; a fifth output reads x alone.
+    let (tape, _) = linear_system_tape(&mut a, |a, vars| vec![a.f1(Func1::Sin, vars[0])]);
+    // The solution reads every input (the matrix reads y and z, the constants x).
+    for slot in 0..3 {
+        assert!(
+            tape.outputs_read(&[0], slot..slot + 1),
+            "solution and slot {slot}"
+        );
+    }
+    // sin x reads x only.
+    assert!(tape.outputs_read(&[4], 0..1));
+    assert!(!tape.outputs_read(&[4], 1..3));
+    assert!(tape.outputs_read(&[4, 3], 2..3));
+    assert!(!tape.outputs_read(&[], 0..3));
 }

@@ -66,6 +66,11 @@ pub trait DaeFunctions {
         let _ = (t, y, yp, out);
         Ok(())
     }
+    /// Whether the crossing functions read `y'` (`true` by default). Where they do
+    /// not, an ODE integrator passes them any finite `y'` instead of computing it.
+    fn roots_read_derivatives(&self) -> bool {
+        true
+    }
 }
 
 /// How IDA's iteration matrix is stored, filled and factorized: what a

@@ -61,6 +61,12 @@ pub trait OdeFunctions {
         let _ = (t, y, ydot, out);
         Ok(())
     }
+    /// Whether the crossing functions read `ydot` (`true` by default). Where they do
+    /// not, the integrator passes the last `ydot` it computed (finite, maybe of another
+    /// point) instead of evaluating `f` for them.
+    fn roots_read_derivatives(&self) -> bool {
+        true
+    }
 }
 
 /// A DAE whose residual is `F = u' - g(t, u)` seen as the ODE `u' = g(t, u)`:
@@ -107,6 +113,9 @@ impl OdeFunctions for ExplicitDae<'_> {
     }
     fn roots(&mut self, t: f64, y: &[f64], ydot: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
         self.f.roots(t, y, ydot, out)
+    }
+    fn roots_read_derivatives(&self) -> bool {
+        self.f.roots_read_derivatives()
     }
 }
 
@@ -449,7 +458,11 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
             let y = vec_ref(y, n);
             let out = std::slice::from_raw_parts_mut(gout, d.n_roots);
             let OdeData { f, ydot, .. } = &mut *d;
-            let result = f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out));
+            let result = if f.roots_read_derivatives() {
+                f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out))
+            } else {
+                f.roots(t, y, ydot, out)
+            };
             d.log.record_roots(t, result, out)
         }
     }));

@@ -1570,6 +1570,8 @@ struct Crossings<'c> {
     shifts: Vec<f64>,
     /// Whether `shifts` are set.
     started: bool,
+    /// Whether a crossing output reads a derivative input.
+    reads_derivatives: bool,
 }
 
 /// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
@@ -1687,11 +1689,15 @@ impl<'c> CompiledFunctions<'c> {
                 .collect();
             let started = false;
             let ws = self.parked.1.take().unwrap_or_else(|| observed.workspace());
+            let outputs: Vec<usize> = found.iter().map(|&k| relations[k].crossing).collect();
+            let (n, up) = (self.layout.n, self.layout.up(0));
+            let reads_derivatives = observed.outputs_read(&outputs, up..up + n);
             self.crossings = Some(Crossings {
+                reads_derivatives,
                 observed,
                 ws,
                 out: vec![0.0; observed.n_outputs()],
-                outputs: found.iter().map(|&k| relations[k].crossing).collect(),
+                outputs,
                 relations: found,
                 shifts,
                 started,
@@ -1763,6 +1769,10 @@ impl DaeFunctions for CompiledFunctions<'_> {
 
     fn n_roots(&self) -> usize {
         self.crossings.as_ref().map_or(0, |c| c.outputs.len())
+    }
+
+    fn roots_read_derivatives(&self) -> bool {
+        self.crossings.as_ref().is_some_and(|c| c.reads_derivatives)
     }
 
     fn roots(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
