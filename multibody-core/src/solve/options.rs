@@ -37,12 +37,12 @@ pub enum LinearSolver {
 /// less accurate than the steps themselves (a pendulum by Verner 8(7) at rtol 1e-6:
 /// 7e-6 at the steps, 2e-3 between them, by ARKODE's interpolant or by
 /// [`Solution::at`](super::Solution::at)); where values between steps matter, bound
-/// the step with [`SolverOptions::max_step`]. The same holds for events: a crossing is
-/// located on the interpolant and the integration restarts from its interpolated
-/// states, so with state events their error is the interpolant's (`x'' = -x` at rtol
-/// 1e-9 with three crossings of its acceleration: 1.9e-6 at the end by Verner 8(7),
-/// 7.7e-6 by Verner 9(8), 8.6e-7 by Kvaerno 5(4), 2.6e-11 by Dormand-Prince 5(4), 1e-9
-/// by IDA and CVODE; without events 1e-12); bound the step there too.
+/// the step with [`SolverOptions::max_step`]. Crossings (state events) are located on
+/// the interpolant too (`x'' = -x` at rtol 1e-9, a crossing of its acceleration:
+/// 1.1e-6 off in time by Verner 8(7)); the explicit methods then integrate to the
+/// crossing from the start of its step, so the state they restart from is as accurate
+/// as a step (1e-12 after three crossings), but Kvaerno 5(4) restarts from the
+/// interpolated state (8.6e-7 there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {
     /// For a model in ODE form, [`Verner8`](Self::Verner8), switching to
