@@ -1570,8 +1570,9 @@ struct Crossings<'c> {
     shifts: Vec<f64>,
     /// Whether `shifts` are set.
     started: bool,
-    /// Whether a crossing output reads a derivative input.
-    reads_derivatives: bool,
+    /// Whether a crossing output reads a derivative input (found when an ODE method
+    /// first asks; IDA never does).
+    reads_derivatives: std::cell::OnceCell<bool>,
 }
 
 /// The compiled residual and Jacobian with their workspaces, as IDA's callbacks.
@@ -1689,15 +1690,12 @@ impl<'c> CompiledFunctions<'c> {
                 .collect();
             let started = false;
             let ws = self.parked.1.take().unwrap_or_else(|| observed.workspace());
-            let outputs: Vec<usize> = found.iter().map(|&k| relations[k].crossing).collect();
-            let (n, up) = (self.layout.n, self.layout.up(0));
-            let reads_derivatives = observed.outputs_read(&outputs, up..up + n);
             self.crossings = Some(Crossings {
-                reads_derivatives,
+                reads_derivatives: std::cell::OnceCell::new(),
                 observed,
                 ws,
                 out: vec![0.0; observed.n_outputs()],
-                outputs,
+                outputs: found.iter().map(|&k| relations[k].crossing).collect(),
                 relations: found,
                 shifts,
                 started,
@@ -1772,7 +1770,11 @@ impl DaeFunctions for CompiledFunctions<'_> {
     }
 
     fn roots_read_derivatives(&self) -> bool {
-        self.crossings.as_ref().is_some_and(|c| c.reads_derivatives)
+        let (n, up) = (self.layout.n, self.layout.up(0));
+        self.crossings.as_ref().is_some_and(|c| {
+            *c.reads_derivatives
+                .get_or_init(|| c.observed.outputs_read(&c.outputs, up..up + n))
+        })
     }
 
     fn roots(&mut self, t: f64, y: &[f64], yp: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
