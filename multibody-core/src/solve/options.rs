@@ -30,19 +30,24 @@ pub enum LinearSolver {
 /// block solved inside, as for open chains and trees of bodies, and for loops whose
 /// constraints the compiler solves); a model with algebraic unknowns is refused with an
 /// error that names them. They do not use [`SolverOptions::linear_solver`]: the implicit
-/// ones take a dense LU up to 24 states and the sparse LU above. ARKODE's methods give
-/// the requested output times and the states at events through ARKODE's interpolation
-/// (Hermite, degree 5 at most): between steps they are accurate to that degree, not to
-/// the method's. With the long steps of the high-order explicit methods that is much
-/// less accurate than the steps themselves (a pendulum by Verner 8(7) at rtol 1e-6:
-/// 7e-6 at the steps, 2e-3 between them, by ARKODE's interpolant or by
-/// [`Solution::at`](super::Solution::at)); where values between steps matter, bound
-/// the step with [`SolverOptions::max_step`]. Crossings (state events) are located on
-/// the interpolant too (`x'' = -x` at rtol 1e-9, a crossing of its acceleration:
-/// 1.1e-6 off in time by Verner 8(7)); the explicit methods then integrate to the
-/// crossing from the start of its step, so the state they restart from is as accurate
-/// as a step (1e-12 after three crossings), but Kvaerno 5(4) restarts from the
-/// interpolated state (8.6e-7 there).
+/// ones take a dense LU up to 24 states and the sparse LU above.
+///
+/// Values between steps: ARKODE interpolates within a step by a Hermite polynomial of
+/// degree 5 at most, much less accurate than the long steps of the high-order explicit
+/// methods (an oscillator by Verner 8(7) at rtol 1e-9: 1e-12 at the steps, 2.8e-6
+/// between them). So the explicit methods of order above 5 (Verner 6(5) to 9(8))
+/// reach each requested output time ([`SolverOptions::output_times`]) by integrating
+/// from the start of its step (a second integrator, one partial step per output time,
+/// the steps themselves unchanged; 3e-12 there), and every ARKODE method locates a
+/// crossing (state event) on the solution integrated from the start of its step
+/// (regula falsi, each trial a partial step) and restarts from the state integrated
+/// to it (`x'' = -x`, rtol 1e-9, three crossings of its acceleration: within 2e-11 in
+/// time and 1e-10 in the final state, where the interpolant put them up to 7e-7 off).
+/// Dormand-Prince 5(4) and Kvaerno 5(4) interpolate their output times (2e-10 and
+/// 5e-10 there). [`Solution::at`](super::Solution::at) interpolates between the
+/// solution's points by cubic Hermite polynomials: with few, long steps, bound the
+/// step with [`SolverOptions::max_step`] or ask for output times where values between
+/// steps matter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {
     /// For a model in ODE form, [`Verner8`](Self::Verner8), switching to
@@ -51,9 +56,9 @@ pub enum Method {
     /// there; checked every 25 steps from the Jacobian's largest eigenvalue, found by
     /// power iteration, times the step size); [`Ida`](Self::Ida) for a model with
     /// algebraic unknowns. Not the default: with a few times fewer steps, the points
-    /// of a solution lie further apart, and values between them
-    /// ([`Solution::at`](super::Solution::at), output times) are interpolated less
-    /// accurately (see above).
+    /// of a solution lie further apart, and values between them by
+    /// [`Solution::at`](super::Solution::at) are interpolated less accurately (see
+    /// above).
     Auto,
     /// The default: SUNDIALS IDA on the DAE `F(t, u, u') = 0`, variable-order BDF
     /// (orders 1 to 5); any model (DASSL in Dymola, `IDA()` in Sundials.jl).

@@ -1,0 +1,282 @@
+//! Values within an accepted step of ARKODE's methods, reached by integrating from the
+//! step's start instead of from ARKODE's interpolant.
+//!
+//! ARKODE interpolates between the ends of a step by a Hermite polynomial of degree 5
+//! at most. With the long steps of high-order methods that is far less accurate than
+//! the step: Verner 8(7) at rtol 1e-9 gave an oscillator's output times 2.8e-6 off
+//! (its steps 1e-12), and Verner 9(8) put crossings 7e-7 off. Here a time within the
+//! step is reached by an integration from the step's start with the stop time set to
+//! it (its first step the whole interval, shorter than the accepted step and so within
+//! the tolerance), so the value carries the method's error:
+//!
+//! - [`locate_crossing`] refines a crossing's time by the Illinois variant of regula
+//!   falsi on the first crossing function ARKODE flagged, bracketed by the step's start
+//!   and end, until the bracket is as narrow as SUNDIALS' own root tolerance
+//!   (`100 u (|t| + |h|)`). It returns the bracket's right end, where the function has
+//!   its new sign, as SUNDIALS' root finding does, with the state integrated to it (the
+//!   integration restarts from there). It runs on the integrator itself: the segment
+//!   ends at the crossing.
+//! - [`integrate_to`] on a second integrator of the same method ([`open_probe`],
+//!   sharing the callback data) gives output times within a step of the methods whose
+//!   order exceeds the interpolant's, leaving the integration itself undisturbed: one
+//!   partial step per output time.
+
+use std::ffi::{c_int, c_void};
+
+use sundials_sys as sys;
+
+use super::super::ida::{IdaError, IdaSettings};
+use super::super::sundials::{vec_mut, vec_ref};
+use super::{
+    ARK_ONE_STEP, ARK_TSTOP_RETURN, ARKodeEvolve, ARKodeReset, ARKodeRootInit, ARKodeSStolerances,
+    ARKodeSVtolerances, ARKodeSetInitStep, ARKodeSetMaxNumSteps, ARKodeSetMinStep,
+    ARKodeSetStopTime, ARKodeSetUserData, ERKStepCreate, ERKStepSetTableName, Guard, rhs_cb,
+};
+
+unsafe extern "C" {
+    fn ARKodeGetCurrentTime(mem: *mut c_void, tcur: *mut f64) -> c_int;
+}
+
+/// The order of an ARKODE explicit table from its name (`ARKODE_VERNER_13_7_8`: 8, the
+/// last number, as every ARKODE table is named).
+pub(super) fn table_order(table: &str) -> Option<u32> {
+    table.rsplit('_').next()?.parse().ok()
+}
+
+/// Whether output times within a step of the explicit `table` are integrated to (its
+/// order exceeds the interpolant's degree, 5) rather than interpolated; a table whose
+/// order cannot be read counts as high.
+pub(super) fn integrates_outputs(table: &str) -> bool {
+    table_order(table).is_none_or(|q| q > 5)
+}
+
+/// Creates `g.probe`: an ERKStep integrator of `table` with `g`'s callback data,
+/// tolerances (`atol` a vector or `settings.atol`) and step limits, for
+/// [`integrate_to`].
+///
+/// # Safety
+/// `g` holds its callback data and SUNDIALS context; `y` is a serial vector of its
+/// length (copied).
+pub(super) unsafe fn open_probe(
+    g: &mut Guard<'_>,
+    table: &std::ffi::CStr,
+    (t0, y): (f64, sys::N_Vector),
+    atol: Option<sys::N_Vector>,
+    (max_steps, min_step): (std::ffi::c_long, f64),
+    settings: &IdaSettings,
+) -> Result<(), IdaError> {
+    // SAFETY: guaranteed by the caller; the probe is owned by `g`, freed in its Drop.
+    unsafe {
+        g.probe = ERKStepCreate(Some(rhs_cb), t0, y, g.o.ctx);
+        if g.probe.is_null() {
+            return Err(g.setup_failed(t0, "creating the output integrator failed".into()));
+        }
+        let mem = g.probe;
+        let flag = ERKStepSetTableName(mem, table.as_ptr());
+        g.check(flag, t0, "setting the output integrator's table", settings)?;
+        let flag = ARKodeSetUserData(mem, g.data.cast::<c_void>());
+        g.check(flag, t0, "ARKodeSetUserData", settings)?;
+        let flag = match atol {
+            Some(a) => ARKodeSVtolerances(mem, settings.rtol, a),
+            None => ARKodeSStolerances(mem, settings.rtol, settings.atol),
+        };
+        g.check(flag, t0, "setting tolerances", settings)?;
+        let flag = ARKodeSetMaxNumSteps(mem, max_steps);
+        g.check(flag, t0, "ARKodeSetMaxNumSteps", settings)?;
+        let flag = ARKodeSetMinStep(mem, min_step);
+        g.check(flag, t0, "ARKodeSetMinStep", settings)?;
+        Ok(())
+    }
+}
+
+/// At most this many trial times per crossing (the bracket reaches its tolerance in
+/// about five).
+const MAX_TRIALS: usize = 40;
+
+/// Integrates `mem` (the integrator of `g` or its probe) from `(t_prev, y_prev)` (the
+/// start of a step) to `t` with the stop time at `t`, into `y`, its first step the
+/// whole interval. The crossing functions are switched off (the segment ends at a
+/// crossing; the probe has none); the counters keep counting.
+///
+/// # Safety
+/// `g` is an ARKODE method's guard between SUNDIALS calls and `mem` its integrator or
+/// probe; `y_prev` and `y` are serial vectors of its length.
+pub(super) unsafe fn integrate_to(
+    g: &mut Guard<'_>,
+    mem: *mut c_void,
+    (t_prev, y_prev): (f64, sys::N_Vector),
+    t: f64,
+    y: sys::N_Vector,
+    settings: &IdaSettings,
+) -> Result<(), IdaError> {
+    // SAFETY: guaranteed by the caller.
+    unsafe {
+        let n = (*g.data).n;
+        if t == t_prev {
+            vec_mut(y, n).copy_from_slice(vec_ref(y_prev, n));
+            return Ok(());
+        }
+        let flag = ARKodeRootInit(mem, 0, None);
+        g.check(flag, t, "ARKodeRootInit", settings)?;
+        // Before the reset, which takes it as the first step (no step estimation).
+        let flag = ARKodeSetInitStep(mem, t - t_prev);
+        g.check(flag, t_prev, "ARKodeSetInitStep", settings)?;
+        let flag = ARKodeReset(mem, t_prev, y_prev);
+        g.check(flag, t_prev, "ARKodeReset", settings)?;
+        let flag = ARKodeSetStopTime(mem, t);
+        g.check(flag, t_prev, "ARKodeSetStopTime", settings)?;
+        let mut reached = t_prev;
+        loop {
+            let flag = ARKodeEvolve(mem, t, y, &mut reached, ARK_ONE_STEP);
+            if flag < 0 {
+                return Err(g.error(reached, flag, "integrating within a step", settings));
+            }
+            if flag == ARK_TSTOP_RETURN || reached >= t {
+                return Ok(());
+            }
+        }
+    }
+}
+
+/// The crossing ARKODE found at `t_root` in the step from `(t_prev, y_prev)`, located
+/// on the integrated solution (see the module documentation); `roots` is ARKODE's root
+/// information of that step. Returns the crossing's time, with `y` the state integrated
+/// to it. Where the bracket cannot be formed (no function flagged, a function already
+/// zero at the step's start, or no sign change of the integrated solution within the
+/// step) it keeps `t_root`, with `y` integrated to it.
+///
+/// # Safety
+/// As [`integrate_to`] on `g`'s integrator, right after ARKODE returned the crossing
+/// (before any other SUNDIALS call on it).
+pub(super) unsafe fn locate_crossing(
+    g: &mut Guard<'_>,
+    (t_prev, y_prev): (f64, sys::N_Vector),
+    t_root: f64,
+    y: sys::N_Vector,
+    roots: &[c_int],
+    settings: &IdaSettings,
+) -> Result<f64, IdaError> {
+    // SAFETY: guaranteed by the caller; the data is owned by the guard and no SUNDIALS
+    // call runs while it is borrowed here.
+    unsafe {
+        let mut t_hi = t_root;
+        let flag = ARKodeGetCurrentTime(g.mem, &mut t_hi);
+        g.check(flag, t_root, "ARKodeGetCurrentTime", settings)?;
+        let n = (*g.data).n;
+        let mut out = vec![0.0; (*g.data).n_roots];
+        let mem = g.mem;
+        let Some(which) = roots.iter().position(|&r| r != 0) else {
+            integrate_to(g, mem, (t_prev, y_prev), t_root, y, settings)?;
+            return Ok(t_root);
+        };
+        let f_start = crossing(g, t_prev, vec_ref(y_prev, n), which, &mut out)?;
+        if f_start == 0.0 {
+            integrate_to(g, mem, (t_prev, y_prev), t_root, y, settings)?;
+            return Ok(t_root);
+        }
+        // Whether a value has the sign the function takes after the crossing.
+        let crossed = |v: f64| v == 0.0 || (v > 0.0) != (f_start > 0.0);
+        // The value at `t` of the solution integrated to it (left in `y`).
+        let mut trial = |g: &mut Guard<'_>, t: f64| -> Result<f64, IdaError> {
+            integrate_to(g, mem, (t_prev, y_prev), t, y, settings)?;
+            crossing(g, t, vec_ref(y, n), which, &mut out)
+        };
+        // The time `y` holds.
+        let mut at = t_root;
+        let f_root = trial(g, t_root)?;
+        let ((mut a, mut fa), (mut b, mut fb)) = if crossed(f_root) {
+            ((t_prev, f_start), (t_root, f_root))
+        } else {
+            let f_hi = if t_hi > t_root {
+                at = t_hi;
+                trial(g, t_hi)?
+            } else {
+                f_root
+            };
+            ((t_root, f_root), (t_hi, f_hi))
+        };
+        if !crossed(fb) {
+            if at != t_root {
+                trial(g, t_root)?;
+            }
+            return Ok(t_root);
+        }
+        let tol = 100.0 * f64::EPSILON * (t_hi.abs() + (t_hi - t_prev).abs());
+        // Which end the last trial replaced (Illinois: an end kept twice in a row has its
+        // value halved, so that the secant moves it).
+        let mut replaced_b = None;
+        for _ in 0..MAX_TRIALS {
+            if fb == 0.0 || b - a <= tol {
+                break;
+            }
+            let secant = b - fb * (b - a) / (fb - fa);
+            let half = 0.5 * tol;
+            let t = if secant.is_finite() {
+                secant.clamp(a + half, b - half)
+            } else {
+                0.5 * (a + b)
+            };
+            let ft = trial(g, t)?;
+            at = t;
+            if crossed(ft) {
+                (b, fb) = (t, ft);
+                if replaced_b == Some(true) {
+                    fa *= 0.5;
+                }
+                replaced_b = Some(true);
+            } else {
+                (a, fa) = (t, ft);
+                if replaced_b == Some(false) {
+                    fb *= 0.5;
+                }
+                replaced_b = Some(false);
+            }
+        }
+        if at != b {
+            trial(g, b)?;
+        }
+        log::trace!("crossing at t = {t_root} on the interpolant, {b} integrated");
+        Ok(b)
+    }
+}
+
+/// Crossing function `which` at `(t, y)` (with `f(t, y)` where the functions read it).
+///
+/// # Safety
+/// No SUNDIALS call is running on `g`.
+unsafe fn crossing(
+    g: &mut Guard<'_>,
+    t: f64,
+    y: &[f64],
+    which: usize,
+    out: &mut [f64],
+) -> Result<f64, IdaError> {
+    // SAFETY: guaranteed by the caller; the data is owned by the guard.
+    let d = unsafe { &mut *g.data };
+    let f = &mut *d.f;
+    let r = if f.roots_read_derivatives() {
+        f.rhs(t, y, &mut d.ydot)
+            .and_then(|()| f.roots(t, y, &d.ydot, out))
+    } else {
+        f.roots(t, y, &d.ydot, out)
+    };
+    match r {
+        Ok(()) if out[which].is_finite() => Ok(out[which]),
+        Ok(()) => Err(IdaError {
+            t,
+            flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
+            message: format!(
+                "crossing function {which} is not finite ({}) while locating its crossing",
+                out[which]
+            ),
+        }),
+        Err(e) => Err(IdaError {
+            t,
+            flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
+            message: format!(
+                "the crossing functions failed while locating a crossing: {}",
+                e.message
+            ),
+        }),
+    }
+}
