@@ -449,3 +449,67 @@ fn kvaerno_stays_within_its_tolerance_on_an_oscillator() {
         assert!(worst < 20.0 * rtol, "rtol {rtol}: {worst:e} off");
     }
 }
+
+/// `y' = -y`, whose right-hand side fails recoverably once, at its `fail_at`-th call.
+struct FailsOnce {
+    calls: usize,
+    fail_at: usize,
+}
+
+impl multibody_core::solve::ode::OdeFunctions for FailsOnce {
+    fn len(&self) -> usize {
+        1
+    }
+    fn rhs(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        ydot: &mut [f64],
+    ) -> Result<(), multibody_core::codegen::EvalError> {
+        self.calls += 1;
+        if self.calls == self.fail_at {
+            return Err(multibody_core::codegen::EvalError {
+                message: "a trial state out of range".into(),
+                recoverable: true,
+            });
+        }
+        ydot[0] = -y[0];
+        Ok(())
+    }
+}
+
+#[test]
+fn auto_takes_up_a_recoverable_failure_of_the_explicit_method_with_bdf() {
+    // ARKODE's explicit stepper cannot retry a step after a recoverable failure;
+    // `Auto` goes on with BDF from the start of the failed step.
+    use multibody_core::solve::ida::{IdaSettings, OutputMode};
+    use multibody_core::solve::ode::{self, OdeMethod};
+    let settings = IdaSettings {
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..IdaSettings::default()
+    };
+    let mut f = FailsOnce {
+        calls: 0,
+        fail_at: 40,
+    };
+    let mut last = (0.0, 0.0);
+    let r = ode::integrate_monitored(
+        &mut f,
+        OdeMethod::Auto,
+        0.0,
+        &[1.0],
+        &settings,
+        &OutputMode::EveryStep { t_end: 2.0 },
+        &mut |t, y, _| {
+            assert!(t >= last.0, "time went back: {t} after {}", last.0);
+            last = (t, y[0]);
+            true
+        },
+        None,
+    )
+    .unwrap();
+    assert!(r.switched);
+    assert_eq!(last.0, 2.0);
+    assert!((last.1 - (-2.0f64).exp()).abs() < 1e-7, "y(2) = {}", last.1);
+}

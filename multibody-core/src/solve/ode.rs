@@ -1001,23 +1001,18 @@ fn integrate_run(
         } else {
             (ARK_TSTOP_RETURN, ARK_ROOT_RETURN)
         };
-        // The last accepted step, where `Auto` takes up a failed explicit integration.
-        let mut last: (f64, Vec<f64>) = (t0, if detect { y0.to_vec() } else { Vec::new() });
-        // The start of the step, from where ARKODE's methods locate a crossing on the
-        // integrated solution (`crossing.rs`); CVODE's interpolant has the method's
-        // order.
+        // The start of the step (the last accepted step's end): where `Auto` takes up a
+        // failed explicit integration, and from where ARKODE's methods locate a crossing
+        // on the integrated solution and integrate to output times (`within_step.rs`;
+        // CVODE's interpolant has the method's order).
         let refine = n_roots > 0 && !method.cvode();
-        let y_prev = if refine || integrate_outputs {
+        let y_prev = if detect || refine || integrate_outputs {
             Some(g.o.vector(y0).map_err(|m| g.setup_failed(t0, m))?)
         } else {
             None
         };
         let mut t_prev = t0;
         loop {
-            if detect {
-                last.0 = t;
-                last.1.copy_from_slice(vec_ref(y, n));
-            }
             if let Some(yp) = y_prev {
                 t_prev = t;
                 vec_mut(yp, n).copy_from_slice(vec_ref(y, n));
@@ -1031,12 +1026,13 @@ fn integrate_run(
                     .last
                     .as_ref()
                     .is_some_and(|(_, _, e)| e.recoverable);
-                if detect && recoverable && flag_name(method, flag) == "ARK_UNREC_RHSFUNC_ERR" {
+                if let (true, Some(yp)) = (detect && recoverable, y_prev)
+                    && flag_name(method, flag) == "ARK_UNREC_RHSFUNC_ERR"
+                {
                     log::debug!(
-                        "{method:?} failed at t = {t} on a recoverable model error: switching to BDF at t = {}",
-                        last.0
+                        "{method:?} failed at t = {t} on a recoverable model error: switching to BDF at t = {t_prev}"
                     );
-                    let (tl, yl) = std::mem::take(&mut last);
+                    let (tl, yl) = (t_prev, vec_ref(yp, n).to_vec());
                     eval(&mut g, tl, &yl, &mut ydot)?;
                     stopped = Some((tl, yl, ydot.clone()));
                     stiff_at = Some(tl);
