@@ -144,7 +144,8 @@ pub enum OutputMode {
 /// with the same meanings: see [`ode`](super::ode)).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct IdaStats {
-    /// Internal steps taken.
+    /// Internal steps taken (for ARKODE's methods including the partial steps from a
+    /// step's start that locate crossings and reach output times).
     pub steps: u64,
     /// Residual evaluations, including those for difference-quotient Jacobians (for
     /// CVODE and ARKODE: right-hand side evaluations, each one evaluation of the

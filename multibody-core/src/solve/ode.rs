@@ -1062,7 +1062,8 @@ fn integrate_run(
             // the step are integrated to as well (the interpolant is gone).
             let to_crossing = y_prev.filter(|_| root && refine);
             if let Some(yp) = to_crossing {
-                t = within_step::locate_crossing(&mut g, (t_prev, yp), t, y, &info, settings)?;
+                (t, info) =
+                    within_step::locate_crossing(&mut g, (t_prev, yp), t, y, &info, settings)?;
             }
             match output {
                 OutputMode::Times(times) => {
@@ -1171,8 +1172,11 @@ fn integrate_run(
         }
         let mut st = stats(method, g.mem);
         if !g.probe.is_null() {
-            // The output times' integrations are the model's evaluations too.
-            st.residual_evals += stats(method, g.probe).residual_evals;
+            // The output times' integrations are steps and evaluations too.
+            let probe = stats(method, g.probe);
+            st.steps += probe.steps;
+            st.residual_evals += probe.residual_evals;
+            st.error_test_failures += probe.error_test_failures;
         }
         log::debug!("{method:?} finished at t = {t}: {st:?}");
         Ok(Run {

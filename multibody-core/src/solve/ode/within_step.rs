@@ -9,13 +9,14 @@
 //! it (its first step the whole interval, shorter than the accepted step and so within
 //! the tolerance), so the value carries the method's error:
 //!
-//! - [`locate_crossing`] refines a crossing's time by the Illinois variant of regula
-//!   falsi on the first crossing function ARKODE flagged, bracketed by the step's start
-//!   and end, until the bracket is as narrow as SUNDIALS' own root tolerance
-//!   (`100 u (|t| + |h|)`). It returns the bracket's right end, where the function has
-//!   its new sign, as SUNDIALS' root finding does, with the state integrated to it (the
-//!   integration restarts from there). It runs on the integrator itself: the segment
-//!   ends at the crossing.
+//! - [`locate_crossing`] finds the earliest sign change of any crossing function on the
+//!   integrated solution by the Illinois variant of regula falsi (as SUNDIALS' own root
+//!   finding does on the interpolant), bracketed by the step's start and end, until the
+//!   bracket is as narrow as SUNDIALS' root tolerance (`100 u (|t| + |h|)`). It returns
+//!   the bracket's right end, where the functions that crossed have their new sign, with
+//!   the state integrated to it (the integration restarts from there) and which
+//!   functions crossed, in which direction. It runs on the integrator itself: the
+//!   segment ends at the crossing.
 //! - [`integrate_to`] on a second integrator of the same method ([`open_probe`],
 //!   sharing the callback data) gives output times within a step of the methods whose
 //!   order exceeds the interpolant's, leaving the integration itself undisturbed: one
@@ -43,9 +44,11 @@ pub(super) fn table_order(table: &str) -> Option<u32> {
     table.rsplit('_').next()?.parse().ok()
 }
 
-/// Whether output times within a step of the explicit `table` are integrated to (its
-/// order exceeds the interpolant's degree, 5) rather than interpolated; a table whose
-/// order cannot be read counts as high.
+/// Whether output times within a step of the explicit `table` are integrated to rather
+/// than interpolated: for orders above 5 (ERKStep's interpolant has degree 5 at most,
+/// and order - 1 for lower orders; measured in `options.rs`'s `Method` docs, Dormand-
+/// Prince 5(4)'s interpolated outputs are about as accurate as its steps, Verner 7(6)
+/// to 9(8)'s far less). A table whose order cannot be read counts as high.
 pub(super) fn integrates_outputs(table: &str) -> bool {
     table_order(table).is_none_or(|q| q > 5)
 }
@@ -116,8 +119,10 @@ pub(super) unsafe fn integrate_to(
             vec_mut(y, n).copy_from_slice(vec_ref(y_prev, n));
             return Ok(());
         }
-        let flag = ARKodeRootInit(mem, 0, None);
-        g.check(flag, t, "ARKodeRootInit", settings)?;
+        if mem == g.mem {
+            let flag = ARKodeRootInit(mem, 0, None);
+            g.check(flag, t, "ARKodeRootInit", settings)?;
+        }
         // Before the reset, which takes it as the first step (no step estimation).
         let flag = ARKodeSetInitStep(mem, t - t_prev);
         g.check(flag, t_prev, "ARKodeSetInitStep", settings)?;
@@ -141,9 +146,11 @@ pub(super) unsafe fn integrate_to(
 /// The crossing ARKODE found at `t_root` in the step from `(t_prev, y_prev)`, located
 /// on the integrated solution (see the module documentation); `roots` is ARKODE's root
 /// information of that step. Returns the crossing's time, with `y` the state integrated
-/// to it. Where the bracket cannot be formed (no function flagged, a function already
-/// zero at the step's start, or no sign change of the integrated solution within the
-/// step) it keeps `t_root`, with `y` integrated to it.
+/// to it, and the root information there (per function, +1 where it rose through zero
+/// between the step's start and that time, -1 where it fell, else 0). Where no function
+/// changes sign on the integrated solution within the step (ARKODE's interpolant did,
+/// the solution not, to roundoff) it keeps `t_root` and `roots`, with `y` integrated to
+/// `t_root`.
 ///
 /// # Safety
 /// As [`integrate_to`] on `g`'s integrator, right after ARKODE returned the crossing
@@ -155,7 +162,7 @@ pub(super) unsafe fn locate_crossing(
     y: sys::N_Vector,
     roots: &[c_int],
     settings: &IdaSettings,
-) -> Result<f64, IdaError> {
+) -> Result<(f64, Vec<c_int>), IdaError> {
     // SAFETY: guaranteed by the caller; the data is owned by the guard and no SUNDIALS
     // call runs while it is borrowed here.
     unsafe {
@@ -163,120 +170,117 @@ pub(super) unsafe fn locate_crossing(
         let flag = ARKodeGetCurrentTime(g.mem, &mut t_hi);
         g.check(flag, t_root, "ARKodeGetCurrentTime", settings)?;
         let n = (*g.data).n;
-        let mut out = vec![0.0; (*g.data).n_roots];
         let mem = g.mem;
-        let Some(which) = roots.iter().position(|&r| r != 0) else {
-            integrate_to(g, mem, (t_prev, y_prev), t_root, y, settings)?;
-            return Ok(t_root);
-        };
-        let f_start = crossing(g, t_prev, vec_ref(y_prev, n), which, &mut out)?;
-        if f_start == 0.0 {
-            integrate_to(g, mem, (t_prev, y_prev), t_root, y, settings)?;
-            return Ok(t_root);
-        }
-        // Whether a value has the sign the function takes after the crossing.
-        let crossed = |v: f64| v == 0.0 || (v > 0.0) != (f_start > 0.0);
-        // The value at `t` of the solution integrated to it (left in `y`).
-        let mut trial = |g: &mut Guard<'_>, t: f64| -> Result<f64, IdaError> {
+        // The functions at the step's start; those zero there take no part (as in
+        // ARKODE, which leaves them inactive until they move away from zero).
+        let start = crossings(g, t_prev, vec_ref(y_prev, n))?;
+        // Per function: whether it has changed sign since the step's start.
+        let changed =
+            |i: usize, v: f64| start[i] != 0.0 && (v == 0.0 || (v > 0.0) != (start[i] > 0.0));
+        let any_changed = |vals: &[f64]| (0..vals.len()).any(|i| changed(i, vals[i]));
+        // The functions at `t` of the solution integrated to it (left in `y`).
+        let trial = |g: &mut Guard<'_>, t: f64| -> Result<Vec<f64>, IdaError> {
             integrate_to(g, mem, (t_prev, y_prev), t, y, settings)?;
-            crossing(g, t, vec_ref(y, n), which, &mut out)
+            crossings(g, t, vec_ref(y, n))
         };
         // The time `y` holds.
         let mut at = t_root;
-        let f_root = trial(g, t_root)?;
-        let ((mut a, mut fa), (mut b, mut fb)) = if crossed(f_root) {
-            ((t_prev, f_start), (t_root, f_root))
+        let at_root = trial(g, t_root)?;
+        let ((mut a, mut ga), (mut b, mut gb)) = if any_changed(&at_root) {
+            ((t_prev, start.clone()), (t_root, at_root))
         } else {
-            let f_hi = if t_hi > t_root {
+            let at_hi = if t_hi > t_root {
                 at = t_hi;
                 trial(g, t_hi)?
             } else {
-                f_root
+                at_root.clone()
             };
-            ((t_root, f_root), (t_hi, f_hi))
+            ((t_root, at_root), (t_hi, at_hi))
         };
-        if !crossed(fb) {
+        if !any_changed(&gb) {
             if at != t_root {
                 trial(g, t_root)?;
             }
-            return Ok(t_root);
+            log::debug!("crossing at t = {t_root} on the interpolant, none on the solution");
+            return Ok((t_root, roots.to_vec()));
         }
         let tol = 100.0 * f64::EPSILON * (t_hi.abs() + (t_hi - t_prev).abs());
-        // Which end the last trial replaced (Illinois: an end kept twice in a row has its
-        // value halved, so that the secant moves it).
-        let mut replaced_b = None;
+        // Regula falsi on the function whose secant crosses first, with the weight of
+        // the end kept twice in a row halved (Illinois; SUNDIALS' `alph`).
+        let mut weight = 1.0;
+        let mut kept_a_before = None;
         for _ in 0..MAX_TRIALS {
-            if fb == 0.0 || b - a <= tol {
+            if b - a <= tol || (0..gb.len()).any(|i| changed(i, gb[i]) && gb[i] == 0.0) {
                 break;
             }
-            let secant = b - fb * (b - a) / (fb - fa);
+            let fraction = (0..gb.len())
+                .filter(|&i| changed(i, gb[i]))
+                .map(|i| gb[i] / (gb[i] - weight * ga[i]))
+                .filter(|f| f.is_finite())
+                .fold(0.0f64, f64::max);
             let half = 0.5 * tol;
-            let t = if secant.is_finite() {
-                secant.clamp(a + half, b - half)
-            } else {
-                0.5 * (a + b)
-            };
-            let ft = trial(g, t)?;
+            let t = (b - fraction * (b - a)).clamp(a + half, b - half);
+            let gt = trial(g, t)?;
             at = t;
-            if crossed(ft) {
-                (b, fb) = (t, ft);
-                if replaced_b == Some(true) {
-                    fa *= 0.5;
-                }
-                replaced_b = Some(true);
+            let kept_a = any_changed(&gt);
+            if kept_a {
+                (b, gb) = (t, gt);
             } else {
-                (a, fa) = (t, ft);
-                if replaced_b == Some(false) {
-                    fb *= 0.5;
-                }
-                replaced_b = Some(false);
+                (a, ga) = (t, gt);
             }
+            weight = match (kept_a_before, kept_a) {
+                (Some(true), true) => weight * 0.5,
+                (Some(false), false) => weight * 2.0,
+                _ => 1.0,
+            };
+            kept_a_before = Some(kept_a);
         }
         if at != b {
             trial(g, b)?;
         }
+        let info = (0..gb.len())
+            .map(|i| match (changed(i, gb[i]), start[i] < 0.0) {
+                (false, _) => 0,
+                (true, true) => 1,
+                (true, false) => -1,
+            })
+            .collect();
         log::trace!("crossing at t = {t_root} on the interpolant, {b} integrated");
-        Ok(b)
+        Ok((b, info))
     }
 }
 
-/// Crossing function `which` at `(t, y)` (with `f(t, y)` where the functions read it).
+/// The crossing functions at `(t, y)` (with `f(t, y)` where they read it).
 ///
 /// # Safety
 /// No SUNDIALS call is running on `g`.
-unsafe fn crossing(
-    g: &mut Guard<'_>,
-    t: f64,
-    y: &[f64],
-    which: usize,
-    out: &mut [f64],
-) -> Result<f64, IdaError> {
+unsafe fn crossings(g: &mut Guard<'_>, t: f64, y: &[f64]) -> Result<Vec<f64>, IdaError> {
     // SAFETY: guaranteed by the caller; the data is owned by the guard.
     let d = unsafe { &mut *g.data };
+    let mut out = vec![0.0; d.n_roots];
     let f = &mut *d.f;
     let r = if f.roots_read_derivatives() {
         f.rhs(t, y, &mut d.ydot)
-            .and_then(|()| f.roots(t, y, &d.ydot, out))
+            .and_then(|()| f.roots(t, y, &d.ydot, &mut out))
     } else {
-        f.roots(t, y, &d.ydot, out)
+        f.roots(t, y, &d.ydot, &mut out)
+    };
+    let failed = |message: String| IdaError {
+        t,
+        flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
+        message,
     };
     match r {
-        Ok(()) if out[which].is_finite() => Ok(out[which]),
-        Ok(()) => Err(IdaError {
-            t,
-            flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
-            message: format!(
-                "crossing function {which} is not finite ({}) while locating its crossing",
-                out[which]
-            ),
-        }),
-        Err(e) => Err(IdaError {
-            t,
-            flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
-            message: format!(
-                "the crossing functions failed while locating a crossing: {}",
-                e.message
-            ),
-        }),
+        Err(e) => Err(failed(format!(
+            "the crossing functions failed while locating a crossing: {}",
+            e.message
+        ))),
+        Ok(()) => match out.iter().position(|v| !v.is_finite()) {
+            Some(i) => Err(failed(format!(
+                "crossing function {i} is not finite ({}) while locating a crossing",
+                out[i]
+            ))),
+            None => Ok(out),
+        },
     }
 }
