@@ -792,8 +792,7 @@ fn open<'a>(
             let flag = ARKodeSetStopTime(mem, t_stop);
             g.check(flag, t0, "ARKodeSetStopTime", settings)?;
             if let (true, OdeMethod::Explicit(table)) = (with_probe, method) {
-                let limits = (max_steps, min_step);
-                within_step::open_probe(&mut g, &name(table)?, (t0, y), atol, limits, settings)?;
+                within_step::open_probe(&mut g, &name(table)?, (t0, y), atol, max_steps, settings)?;
             }
             if n_roots > 0 {
                 let nr = c_int::try_from(n_roots).map_err(|_| invalid(t0, "too many roots"))?;

@@ -54,8 +54,9 @@ pub(super) fn integrates_outputs(table: &str) -> bool {
 }
 
 /// Creates `g.probe`: an ERKStep integrator of `table` with `g`'s callback data,
-/// tolerances (`atol` a vector or `settings.atol`) and step limits, for
-/// [`integrate_to`].
+/// tolerances (`atol` a vector or `settings.atol`) and maximum number of steps, for
+/// [`integrate_to`] (no smallest step: an output time may lie closer to a step's start
+/// than the integration's smallest step).
 ///
 /// # Safety
 /// `g` holds its callback data and SUNDIALS context; `y` is a serial vector of its
@@ -65,7 +66,7 @@ pub(super) unsafe fn open_probe(
     table: &std::ffi::CStr,
     (t0, y): (f64, sys::N_Vector),
     atol: Option<sys::N_Vector>,
-    (max_steps, min_step): (std::ffi::c_long, f64),
+    max_steps: std::ffi::c_long,
     settings: &IdaSettings,
 ) -> Result<(), IdaError> {
     // SAFETY: guaranteed by the caller; the probe is owned by `g`, freed in its Drop.
@@ -86,8 +87,6 @@ pub(super) unsafe fn open_probe(
         g.check(flag, t0, "setting tolerances", settings)?;
         let flag = ARKodeSetMaxNumSteps(mem, max_steps);
         g.check(flag, t0, "ARKodeSetMaxNumSteps", settings)?;
-        let flag = ARKodeSetMinStep(mem, min_step);
-        g.check(flag, t0, "ARKodeSetMinStep", settings)?;
         Ok(())
     }
 }
@@ -122,6 +121,10 @@ pub(super) unsafe fn integrate_to(
         if mem == g.mem {
             let flag = ARKodeRootInit(mem, 0, None);
             g.check(flag, t, "ARKodeRootInit", settings)?;
+            // A crossing may lie closer to the step's start than the smallest step
+            // allowed in the integration (which ends here).
+            let flag = ARKodeSetMinStep(mem, 0.0);
+            g.check(flag, t, "ARKodeSetMinStep", settings)?;
         }
         // Before the reset, which takes it as the first step (no step estimation).
         let flag = ARKodeSetInitStep(mem, t - t_prev);
