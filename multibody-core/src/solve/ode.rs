@@ -24,6 +24,7 @@ use super::ida::{
 };
 use super::linsol;
 
+mod earliest_crossing;
 mod within_step;
 use super::sundials::{
     Callback, EvalLog, Objects, not_finite, origin_name, scatter_dense, vec_mut, vec_ref,

@@ -11,8 +11,9 @@
 //!
 //! - [`locate_crossing`] finds the earliest sign change of any crossing function on the
 //!   integrated solution by the Illinois variant of regula falsi (as SUNDIALS' own root
-//!   finding does on the interpolant), bracketed by the step's start and end, until the
-//!   bracket is as narrow as SUNDIALS' root tolerance (`100 u (|t| + |h|)`). It returns
+//!   finding does on the interpolant; `earliest_crossing.rs`), bracketed by the step's
+//!   start and end, until the bracket is as narrow as SUNDIALS' root tolerance
+//!   (`100 u (|t| + |h|)`). It returns
 //!   the bracket's right end, where the functions that crossed have their new sign, with
 //!   the state integrated to it (the integration restarts from there) and which
 //!   functions crossed, in which direction. It runs on the integrator itself: the
@@ -22,12 +23,14 @@
 //!   order exceeds the interpolant's, leaving the integration itself undisturbed: one
 //!   partial step per output time.
 
+use std::cell::Cell;
 use std::ffi::{c_int, c_void};
 
 use sundials_sys as sys;
 
 use super::super::ida::{IdaError, IdaSettings};
 use super::super::sundials::{vec_mut, vec_ref};
+use super::earliest_crossing;
 use super::{
     ARK_ONE_STEP, ARK_TSTOP_RETURN, ARKodeEvolve, ARKodeReset, ARKodeRootInit, ARKodeSStolerances,
     ARKodeSVtolerances, ARKodeSetInitStep, ARKodeSetMaxNumSteps, ARKodeSetMinStep,
@@ -174,82 +177,52 @@ pub(super) unsafe fn locate_crossing(
         g.check(flag, t_root, "ARKodeGetCurrentTime", settings)?;
         let n = (*g.data).n;
         let mem = g.mem;
-        // The functions at the step's start; those zero there take no part (as in
-        // ARKODE, which leaves them inactive until they move away from zero).
+        // The functions at the step's start; those zero there take no part (ARKODE
+        // re-reads them within its first step; where it flagged one, its crossing stays
+        // ARKODE's).
         let start = crossings(g, t_prev, vec_ref(y_prev, n))?;
-        // Per function: whether it has changed sign since the step's start.
-        let changed =
-            |i: usize, v: f64| start[i] != 0.0 && (v == 0.0 || (v > 0.0) != (start[i] > 0.0));
-        let any_changed = |vals: &[f64]| (0..vals.len()).any(|i| changed(i, vals[i]));
+        if (0..start.len()).any(|i| start[i] == 0.0 && roots[i] != 0) {
+            integrate_to(g, mem, (t_prev, y_prev), t_root, y, settings)?;
+            return Ok((t_root, roots.to_vec()));
+        }
+        // The time `y` holds.
+        let at = Cell::new(t_root);
         // The functions at `t` of the solution integrated to it (left in `y`).
         let trial = |g: &mut Guard<'_>, t: f64| -> Result<Vec<f64>, IdaError> {
             integrate_to(g, mem, (t_prev, y_prev), t, y, settings)?;
+            at.set(t);
             crossings(g, t, vec_ref(y, n))
         };
-        // The time `y` holds.
-        let mut at = t_root;
         let at_root = trial(g, t_root)?;
-        let ((mut a, mut ga), (mut b, mut gb)) = if any_changed(&at_root) {
+        let (left, right) = if earliest_crossing::any_changed(&start, &at_root) {
             ((t_prev, start.clone()), (t_root, at_root))
-        } else {
-            let at_hi = if t_hi > t_root {
-                at = t_hi;
-                trial(g, t_hi)?
-            } else {
-                at_root.clone()
-            };
+        } else if t_hi > t_root {
+            let at_hi = trial(g, t_hi)?;
             ((t_root, at_root), (t_hi, at_hi))
+        } else {
+            ((t_root, at_root.clone()), (t_root, at_root))
         };
-        if !any_changed(&gb) {
-            if at != t_root {
+        if !earliest_crossing::any_changed(&start, &right.1) {
+            if at.get() != t_root {
                 trial(g, t_root)?;
             }
             log::debug!("crossing at t = {t_root} on the interpolant, none on the solution");
             return Ok((t_root, roots.to_vec()));
         }
         let tol = 100.0 * f64::EPSILON * (t_hi.abs() + (t_hi - t_prev).abs());
-        // Regula falsi on the function whose secant crosses first, with the weight of
-        // the end kept twice in a row halved (Illinois; SUNDIALS' `alph`).
-        let mut weight = 1.0;
-        let mut kept_a_before = None;
-        for _ in 0..MAX_TRIALS {
-            if b - a <= tol || (0..gb.len()).any(|i| changed(i, gb[i]) && gb[i] == 0.0) {
-                break;
-            }
-            let fraction = (0..gb.len())
-                .filter(|&i| changed(i, gb[i]))
-                .map(|i| gb[i] / (gb[i] - weight * ga[i]))
-                .filter(|f| f.is_finite())
-                .fold(0.0f64, f64::max);
-            let half = 0.5 * tol;
-            let t = (b - fraction * (b - a)).clamp(a + half, b - half);
-            let gt = trial(g, t)?;
-            at = t;
-            let kept_a = any_changed(&gt);
-            if kept_a {
-                (b, gb) = (t, gt);
-            } else {
-                (a, ga) = (t, gt);
-            }
-            weight = match (kept_a_before, kept_a) {
-                (Some(true), true) => weight * 0.5,
-                (Some(false), false) => weight * 2.0,
-                _ => 1.0,
-            };
-            kept_a_before = Some(kept_a);
-        }
-        if at != b {
+        let (b, gb) = earliest_crossing::narrow(
+            &start,
+            left,
+            right,
+            (tol, t_hi - t_prev),
+            MAX_TRIALS,
+            |t| trial(g, t),
+        )?;
+        if at.get() != b {
             trial(g, b)?;
         }
-        let info = (0..gb.len())
-            .map(|i| match (changed(i, gb[i]), start[i] < 0.0) {
-                (false, _) => 0,
-                (true, true) => 1,
-                (true, false) => -1,
-            })
-            .collect();
         log::trace!("crossing at t = {t_root} on the interpolant, {b} integrated");
-        Ok((b, info))
+        Ok((b, earliest_crossing::directions(&start, &gb)))
     }
 }
 
