@@ -23,13 +23,13 @@ use super::ida::{
     validate,
 };
 use super::linsol;
-
-mod earliest_crossing;
-mod within_step;
 use super::sundials::{
     Callback, EvalLog, Objects, not_finite, origin_name, scatter_dense, vec_mut, vec_ref,
     write_csc_pattern,
 };
+
+mod earliest_crossing;
+mod within_step;
 
 /// An ODE `u' = f(t, u)` with, optionally, its Jacobian `df/du` and crossing functions.
 pub trait OdeFunctions {
@@ -269,6 +269,18 @@ struct OdeData<'a> {
     log: EvalLog,
 }
 
+impl OdeData<'_> {
+    /// The crossing functions at `(t, y)` into `out`, with `f(t, y)` computed into
+    /// `ydot` first where they read it.
+    fn roots(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        let OdeData { f, ydot, .. } = self;
+        if f.roots_read_derivatives() {
+            f.rhs(t, y, ydot)?;
+        }
+        f.roots(t, y, ydot, out)
+    }
+}
+
 /// Owns the integrator's memory and the callback data of one integration and frees
 /// them in Drop, before the SUNDIALS objects they use.
 struct Guard<'a> {
@@ -468,12 +480,7 @@ unsafe extern "C" fn root_cb(t: f64, y: sys::N_Vector, gout: *mut f64, ud: *mut 
             let n = d.n;
             let y = vec_ref(y, n);
             let out = std::slice::from_raw_parts_mut(gout, d.n_roots);
-            let OdeData { f, ydot, .. } = &mut *d;
-            let result = if f.roots_read_derivatives() {
-                f.rhs(t, y, ydot).and_then(|()| f.roots(t, y, ydot, out))
-            } else {
-                f.roots(t, y, ydot, out)
-            };
+            let result = d.roots(t, y, out);
             d.log.record_roots(t, result, out)
         }
     }));
@@ -1065,6 +1072,14 @@ fn integrate_run(
                 (t, info) =
                     within_step::locate_crossing(&mut g, (t_prev, yp), t, y, &info, settings)?;
             }
+            // What reaches the output times within this step: the integrator itself after
+            // a crossing (the segment ends there), the probe for the high-order methods,
+            // or (`None`) the interpolant.
+            let integrator_to_outputs = if to_crossing.is_some() {
+                Some(g.mem)
+            } else {
+                integrate_outputs.then_some(g.probe)
+            };
             match output {
                 OutputMode::Times(times) => {
                     while let Some(&tout) = times.get(next_output) {
@@ -1080,21 +1095,10 @@ fn integrate_run(
                             }
                             continue;
                         }
-                        if let Some(yp) = to_crossing {
-                            let mem = g.mem;
+                        if let (Some(mem), Some(yp)) = (integrator_to_outputs, y_prev) {
                             within_step::integrate_to(
                                 &mut g,
                                 mem,
-                                (t_prev, yp),
-                                tout,
-                                ky,
-                                settings,
-                            )?;
-                        } else if let (Some(yp), true) = (y_prev, integrate_outputs) {
-                            let probe = g.probe;
-                            within_step::integrate_to(
-                                &mut g,
-                                probe,
                                 (t_prev, yp),
                                 tout,
                                 ky,

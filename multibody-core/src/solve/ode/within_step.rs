@@ -43,7 +43,7 @@ unsafe extern "C" {
 
 /// The order of an ARKODE explicit table from its name (`ARKODE_VERNER_13_7_8`: 8, the
 /// last number, as every ARKODE table is named).
-pub(super) fn table_order(table: &str) -> Option<u32> {
+fn table_order(table: &str) -> Option<u32> {
     table.rsplit('_').next()?.parse().ok()
 }
 
@@ -234,13 +234,7 @@ unsafe fn crossings(g: &mut Guard<'_>, t: f64, y: &[f64]) -> Result<Vec<f64>, Id
     // SAFETY: guaranteed by the caller; the data is owned by the guard.
     let d = unsafe { &mut *g.data };
     let mut out = vec![0.0; d.n_roots];
-    let f = &mut *d.f;
-    let r = if f.roots_read_derivatives() {
-        f.rhs(t, y, &mut d.ydot)
-            .and_then(|()| f.roots(t, y, &d.ydot, &mut out))
-    } else {
-        f.roots(t, y, &d.ydot, &mut out)
-    };
+    let r = d.roots(t, y, &mut out);
     let failed = |message: String| IdaError {
         t,
         flag: format!("{}_RTFUNC_FAIL", g.method.flag_prefix()),
